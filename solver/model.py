@@ -1,0 +1,348 @@
+"""The coupled aeroelastic residual of one mesh size N, built symbolically once.
+
+Unknowns x (4N - 1), in this order:
+    u (N) [m]        heave at stations
+    du (N) [-]       slope u' at stations
+    theta (N) [deg]  twist at stations
+    g (N - 1) [m]    circulation per unit airspeed of each right-half panel, Gamma / V
+Parameters p (5N + 1): y, chord, elastic_axis, EI, GJ (N each), alpha [deg].
+
+Equations (4N - 1), in this order:
+    root clamps (3)          u_0 = 0, u'_0 = 0, theta_0 = 0
+    heave kinematics (N-1)   u_{i+1} - u_i - h_i (u'_i + u'_{i+1}) / 2 = 0                   [m]
+    bending (N-1)            u'_{i+1} - u'_i - h_i (M_i/EI_i + M_{i+1}/EI_{i+1}) / 2 = 0     [-]
+    torsion (N-1)            theta_{i+1} - theta_i - h_i (180/pi)(T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2 = 0  [deg]
+    flow tangency (N-1)      (V_hat + induced_i) . n_i = 0                                   [-]
+The trapezoidal rule is AeroSandbox's ``constrain_derivative``; the tangency rows are per unit V.
+
+Aerodynamic loads scale with the dynamic pressure q = rho V^2 / 2 once the circulation is written
+per unit V, so the residual is exactly affine in q:
+
+    r(x; p, q) = r0(x; p) + q r1(x; p),   J = J0 + q J1.
+
+The compiled function returns r0, r1, J0, J1. Newton combines them for any q; a stored
+Jacobian is re-targeted to a new airspeed for free; and J0 v = -lambda J1 v is the divergence
+eigenproblem.
+
+The Jacobian is exact: CasADi differentiates the geometry, the aerodynamic glue and the
+horseshoe kernel (`vlm.pair_kernel`); the O(N^2) induced-velocity part is combined by the chain
+rule from the kernel's own derivatives, and the beam's outboard sums are applied as
+running sums, which keeps the work at O(N^2) instead of O(N^3).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from solver.geometry import panel_geometry, station_points
+from solver.vlm import source_columns
+
+__all__ = ["Layout", "build_coupled_function", "build_panel_loads_function", "MODEL_VERSION"]
+
+# Bump when the equations change: compiled libraries on disk are keyed by it.
+MODEL_VERSION = "1"
+
+DEG_PER_RAD = 180.0 / np.pi
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Index ranges of unknowns, equations and parameters for N stations."""
+
+    n: int
+
+    @property
+    def n_panels(self) -> int:
+        return self.n - 1
+
+    @property
+    def n_unknowns(self) -> int:
+        return 4 * self.n - 1
+
+    @property
+    def n_parameters(self) -> int:
+        return 5 * self.n + 1
+
+    @property
+    def heave(self) -> slice:
+        return slice(0, self.n)
+
+    @property
+    def slope(self) -> slice:
+        return slice(self.n, 2 * self.n)
+
+    @property
+    def twist(self) -> slice:
+        return slice(2 * self.n, 3 * self.n)
+
+    @property
+    def circulation(self) -> slice:
+        return slice(3 * self.n, 4 * self.n - 1)
+
+    # Equation rows
+    @property
+    def bending_rows(self) -> slice:
+        return slice(3 + self.n_panels, 3 + 2 * self.n_panels)
+
+    @property
+    def torsion_rows(self) -> slice:
+        return slice(3 + 2 * self.n_panels, 3 + 3 * self.n_panels)
+
+    @property
+    def tangency_rows(self) -> slice:
+        return slice(3 + 3 * self.n_panels, 3 + 4 * self.n_panels)
+
+
+def _split_parameters(p: ca.MX | ca.SX, n: int) -> tuple:
+    """y, chord, elastic_axis, EI, GJ (N each) and alpha [deg] from p."""
+    return (
+        p[0:n],
+        p[n : 2 * n],
+        p[2 * n : 3 * n],
+        p[3 * n : 4 * n],
+        p[4 * n : 5 * n],
+        p[5 * n],
+    )
+
+
+def _freestream_direction(alpha_deg: ca.SX) -> ca.SX:
+    """Unit freestream velocity in geometry axes, (3,) [-]."""
+    alpha = alpha_deg * (np.pi / 180.0)
+    return ca.vertcat(ca.cos(alpha), 0, ca.sin(alpha))
+
+
+def _geometry_function(n: int) -> ca.Function:
+    """(heave, twist, y, chord, elastic_axis) -> points and their derivatives w.r.t. [u; theta]."""
+    heave, twist, y, chord, ea = (ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea"))
+    deformation = ca.vertcat(heave, twist)
+    points = station_points(heave, twist, y, chord, ea)
+    panels = panel_geometry(points)
+    outputs = [points.vortex_vertex, panels.collocation, panels.vortex_center]
+    jacobians = [ca.jacobian(ca.vec(out), deformation) for out in outputs]
+    return ca.Function(
+        "wing_geometry",
+        [heave, twist, y, chord, ea],
+        outputs + jacobians,
+    )
+
+
+def _aero_loads(n: int, heave, twist, circulation, y, chord, ea, alpha_deg, induced_forces):
+    """Per-panel forces per unit q from the induced velocity at the vortex centres.
+
+    Returns (force (3, M) [m^2], torque (1, M) [m^3], panel geometry). Kutta-Joukowski:
+    F = rho (V_local x l) Gamma = 2 q (V_hat_local x l) g.
+    """
+    m = n - 1
+    points = station_points(heave, twist, y, chord, ea)
+    panels = panel_geometry(points)
+    v_local = ca.repmat(_freestream_direction(alpha_deg), 1, m) + ca.reshape(induced_forces, 3, m)
+    leg = panels.bound_leg
+    g_row = circulation.T
+    force = 2 * ca.vertcat(
+        (v_local[1, :] * leg[2, :] - v_local[2, :] * leg[1, :]) * g_row,
+        (v_local[2, :] * leg[0, :] - v_local[0, :] * leg[2, :]) * g_row,
+        (v_local[0, :] * leg[1, :] - v_local[1, :] * leg[0, :]) * g_row,
+    )
+    center = panels.vortex_center
+    # y-moment about the origin = torque about the elastic axis (which lies on the y axis).
+    torque = center[2, :] * force[0, :] - center[0, :] * force[2, :]
+    return force, torque, points, panels
+
+
+def _aero_function(n: int) -> ca.Function:
+    """Tangency residuals and beam loads given the induced velocities, with partial Jacobians."""
+    m = n - 1
+    heave, twist, y, chord, ea = (ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea"))
+    circulation = ca.SX.sym("g", m)
+    alpha_deg = ca.SX.sym("alpha")
+    induced_tangency = ca.SX.sym("induced_tangency", 3 * m)
+    induced_forces = ca.SX.sym("induced_forces", 3 * m)
+    force, torque, _, panels = _aero_loads(
+        n, heave, twist, circulation, y, chord, ea, alpha_deg, induced_forces
+    )
+    v_collocation = ca.repmat(_freestream_direction(alpha_deg), 1, m) + ca.reshape(
+        induced_tangency, 3, m
+    )
+    tangency = ca.sum1(v_collocation * panels.normal).T
+    lift_force = force[2, :]
+    loads = ca.vertcat(lift_force.T, (lift_force * panels.vortex_center[1, :]).T, torque.T)
+    z = ca.vertcat(heave, twist, circulation)
+    return ca.Function(
+        "aero_glue",
+        [heave, twist, circulation, y, chord, ea, alpha_deg, induced_tangency, induced_forces],
+        [
+            tangency,
+            loads,
+            ca.jacobian(tangency, z),
+            ca.jacobian(tangency, induced_tangency),
+            ca.jacobian(loads, z),
+            ca.jacobian(loads, induced_forces),
+        ],
+    )
+
+
+def _outboard_sum(panel_rows: ca.MX) -> ca.MX:
+    """(N-1, k) per-panel rows -> (N, k): row i sums panels j >= i (zero at the tip).
+
+    A running sum from the tip, O(N k), where a triangular matrix product would be O(N^2 k).
+    """
+    m, k = panel_rows.shape
+    running = ca.MX(1, k)
+    rows = [running]
+    for j in reversed(range(m)):
+        running = running + panel_rows[j, :]
+        rows.append(running)
+    return ca.vertcat(*reversed(rows))
+
+
+def _induced_derivative(
+    g_dfield: ca.MX, g_dleft: ca.MX, g_dright: ca.MX, field_d: ca.MX, vertex_d: ca.MX, m: int
+) -> ca.MX:
+    """d(induced velocity)/d[u; theta] by the chain rule through field points and vertices.
+
+    g_dfield (3M, 3), g_dleft/g_dright (3M, 3M) from `vlm.source_columns`; field_d (3M, 2N) and
+    vertex_d (3N, 2N) the geometry derivatives. Panel k's left vertex is station k, its right
+    vertex station k + 1.
+    """
+    pad = ca.MX(3 * m, 3)
+    d_vertices = ca.horzcat(g_dleft, pad) + ca.horzcat(pad, g_dright)
+    result = ca.mtimes(d_vertices, vertex_d)
+    for component in range(3):
+        # Row 3i + c of the field derivative uses field point i's coordinate `component`.
+        rows = [3 * i + component for i in range(m) for _ in range(3)]
+        result += ca.mtimes(ca.diag(g_dfield[:, component]), field_d[rows, :])
+    return result
+
+
+def build_coupled_function(n: int) -> ca.Function:
+    """(x, p) -> (r0, r1, J0, J1), all dense, for N stations. See the module docstring."""
+    layout = Layout(n)
+    m = layout.n_panels
+    x = ca.MX.sym("x", layout.n_unknowns)
+    p = ca.MX.sym("p", layout.n_parameters)
+    heave, slope, twist, circulation = (
+        x[layout.heave],
+        x[layout.slope],
+        x[layout.twist],
+        x[layout.circulation],
+    )
+    y, chord, ea, ei, gj, alpha_deg = _split_parameters(p, n)
+
+    geometry = _geometry_function(n)
+    vertex, collocation, center, vertex_d, collocation_d, center_d = geometry(
+        heave, twist, y, chord, ea
+    )
+    sources = source_columns(m)
+    left, right = vertex[:, :-1], vertex[:, 1:]
+    all_bound_legs = ca.DM.ones(m, m)
+    no_self_bound_leg = ca.DM.ones(m, m) - ca.DM.eye(m)
+    ind_t, infl_t, dfield_t, dleft_t, dright_t = sources(
+        collocation, all_bound_legs, left, right, circulation.T
+    )
+    ind_f, infl_f, dfield_f, dleft_f, dright_f = sources(
+        center, no_self_bound_leg, left, right, circulation.T
+    )
+    ind_t_z = ca.horzcat(
+        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_d, vertex_d, m), infl_t
+    )
+    ind_f_z = ca.horzcat(
+        _induced_derivative(dfield_f, dleft_f, dright_f, center_d, vertex_d, m), infl_f
+    )
+
+    aero = _aero_function(n)
+    tangency, loads, tangency_z, tangency_ind, loads_z, loads_ind = aero(
+        heave, twist, circulation, y, chord, ea, alpha_deg, ind_t, ind_f
+    )
+    tangency_z = tangency_z + ca.mtimes(tangency_ind, ind_t_z)
+    loads_z = loads_z + ca.mtimes(loads_ind, ind_f_z)
+
+    def z_to_x(rows_z: ca.MX) -> ca.MX:
+        """Columns [u, theta, g] -> [u, u', theta, g] (loads do not depend on the slope)."""
+        return ca.horzcat(rows_z[:, :n], ca.MX(rows_z.shape[0], n), rows_z[:, n:])
+
+    tangency_x = z_to_x(tangency_z)
+    loads_x = z_to_x(loads_z)
+
+    # Beam: internal loads per unit q by outboard sums (study section 14.3).
+    def internal_loads(lift_force, lift_moment_about_root, torque):
+        shear = _outboard_sum(lift_force)
+        bending = _outboard_sum(lift_moment_about_root) - ca.mtimes(ca.diag(y), shear)
+        return bending, _outboard_sum(torque)
+
+    bending, torsion = internal_loads(loads[:m], loads[m : 2 * m], loads[2 * m :])
+    bending_x, torsion_x = internal_loads(loads_x[:m, :], loads_x[m : 2 * m, :], loads_x[2 * m :, :])
+
+    h = y[1:] - y[:-1]
+
+    def trapezoid(integrand_rows: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
+        """-h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) * scale, row-wise for values or Jacobian rows."""
+        inner = ca.diag(-scale * h / (2 * stiffness[:-1]))
+        outer = ca.diag(-scale * h / (2 * stiffness[1:]))
+        return ca.mtimes(inner, integrand_rows[:-1, :]) + ca.mtimes(outer, integrand_rows[1:, :])
+
+    structure = ca.vertcat(
+        heave[0],
+        slope[0],
+        twist[0],
+        heave[1:] - heave[:-1] - h * (slope[:-1] + slope[1:]) / 2,
+        slope[1:] - slope[:-1],
+        twist[1:] - twist[:-1],
+    )
+    r0 = ca.vertcat(structure, tangency)
+    r1 = ca.vertcat(
+        ca.MX(3 + m, 1),
+        trapezoid(bending, ei, 1.0),
+        trapezoid(torsion, gj, DEG_PER_RAD),
+        ca.MX(m, 1),
+    )
+    j0 = ca.vertcat(ca.jacobian(structure, x), tangency_x)
+    j1 = ca.vertcat(
+        ca.MX(3 + m, layout.n_unknowns),
+        trapezoid(bending_x, ei, 1.0),
+        trapezoid(torsion_x, gj, DEG_PER_RAD),
+        ca.MX(m, layout.n_unknowns),
+    )
+    return ca.Function(
+        f"flexwing_coupled_{n}",
+        [x, p],
+        [ca.densify(r0), ca.densify(r1), ca.densify(j0), ca.densify(j1)],
+        ["x", "p"],
+        ["r0", "r1", "J0", "J1"],
+    )
+
+
+def build_panel_loads_function(n: int) -> ca.Function:
+    """(x, p) -> per-unit-q panel forces, torques, vortex centres and vortex vertices.
+
+    Outputs: force (3, N-1) [m^2] (times q gives N), torque (1, N-1) [m^3] (times q gives N m),
+    vortex_center (3, N-1) [m], vortex_vertex (3, N) [m]; right half-wing, root to tip.
+    """
+    layout = Layout(n)
+    m = layout.n_panels
+    x = ca.MX.sym("x", layout.n_unknowns)
+    p = ca.MX.sym("p", layout.n_parameters)
+    heave, twist, circulation = x[layout.heave], x[layout.twist], x[layout.circulation]
+    y, chord, ea, _, _, alpha_deg = _split_parameters(p, n)
+    vertex, _, center, *_ = _geometry_function(n)(heave, twist, y, chord, ea)
+    induced, *_ = source_columns(m)(
+        center, ca.DM.ones(m, m) - ca.DM.eye(m), vertex[:, :-1], vertex[:, 1:], circulation.T
+    )
+    sx_args = [ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea")]
+    g_sx, alpha_sx, induced_sx = ca.SX.sym("g", m), ca.SX.sym("alpha"), ca.SX.sym("ind", 3 * m)
+    force, torque, _, _ = _aero_loads(
+        n, sx_args[0], sx_args[1], g_sx, sx_args[2], sx_args[3], sx_args[4], alpha_sx, induced_sx
+    )
+    loads = ca.Function(
+        "panel_forces", [*sx_args[:2], g_sx, *sx_args[2:], alpha_sx, induced_sx], [force, torque]
+    )
+    force_mx, torque_mx = loads(heave, twist, circulation, y, chord, ea, alpha_deg, induced)
+    return ca.Function(
+        f"flexwing_panel_loads_{n}",
+        [x, p],
+        [force_mx, torque_mx, center, vertex],
+        ["x", "p"],
+        ["force", "torque", "vortex_center", "vortex_vertex"],
+    )

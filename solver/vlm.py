@@ -1,0 +1,145 @@
+"""Horseshoe vortex lattice of a symmetric wing: the O(N^2) part of the model, as one small kernel.
+
+Each right-half panel k carries a horseshoe vortex of strength Gamma_k = V g_k: a bound leg from its
+inboard quarter-chord vertex A to its outboard vertex B, and two trailing legs running to +x
+infinity (geometry axes, not along the freestream: AeroSandbox's default). The left half is the
+mirror image in y with the same circulation, so its horseshoe runs from m(B) to m(A), m = diag(1,-1,1).
+
+The induced velocity of a unit horseshoe at a field point (Drela's form, as in AeroSandbox's
+``calculate_induced_velocity_horseshoe``), with a = P - A, b = P - B and u = [1, 0, 0]:
+
+    v = 1/(4 pi) [ (a x b)(1/|a| + 1/|b|) / (|a||b| + a.b) + (a x u)/(|a|(|a| - a.u))
+                   - (b x u)/(|b|(|b| - b.u)) ]
+
+A bound leg induces nothing at its own midpoint, where the first term is 0/0: the `bound_weight`
+input masks it exactly (AeroSandbox's 1e-8 m core radius gives the same numbers).
+
+`pair_kernel` returns the velocity and its exact derivatives with respect to the three points, so
+the full Jacobian of the coupled residual is assembled from O(N^2) kernel values by the chain
+rule instead of by differentiating through a dense O(N^2) expression graph.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+__all__ = ["horseshoe_velocity", "pair_kernel", "source_columns"]
+
+_MIRROR = ca.DM([1.0, -1.0, 1.0])
+
+
+def _cross(a: ca.SX, b: ca.SX) -> ca.SX:
+    return ca.vertcat(
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    )
+
+
+def horseshoe_velocity(
+    field: ca.SX, left: ca.SX, right: ca.SX, bound_weight: ca.SX | float = 1.0
+) -> ca.SX:
+    """Velocity [m/s per (m^2/s)] induced at `field` by a unit horseshoe with bound leg left->right.
+
+    All points are (3,) [m]. `bound_weight` is 1, or 0 to drop the bound leg's contribution
+    (for a field point on the bound leg itself).
+    """
+    a = field - left
+    b = field - right
+    norm_a = ca.sqrt(ca.dot(a, a))
+    norm_b = ca.sqrt(ca.dot(b, b))
+    # Trailing legs run along +x: a x u = [0, a_z, -a_y], a.u = a_x.
+    a_cross_u = ca.vertcat(0, a[2], -a[1])
+    b_cross_u = ca.vertcat(0, b[2], -b[1])
+    trailing = a_cross_u / (norm_a * (norm_a - a[0])) - b_cross_u / (norm_b * (norm_b - b[0]))
+    # With weight 0 the denominator is shifted away from 0/0 and the term multiplied by 0, so
+    # neither the value nor its derivatives see the singularity.
+    bound_denominator = norm_a * norm_b + ca.dot(a, b) + (1 - bound_weight)
+    bound = bound_weight * _cross(a, b) * (1 / norm_a + 1 / norm_b) / bound_denominator
+    return (bound + trailing) / (4 * np.pi)
+
+
+def pair_kernel() -> ca.Function:
+    """Both halves' horseshoes of one right-half panel seen from one field point.
+
+    Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m].
+    Outputs, all per unit V:
+        velocity (3,) [-]: induced velocity per unit g.
+        g_dfield (3, 3): g * d(velocity)/d(field), transposed ([d, c] = d v_c / d field_d).
+        g_dleft, g_dright (3, 3): the same for the two bound-vortex vertices.
+    """
+    field = ca.SX.sym("field", 3)
+    weight = ca.SX.sym("bound_weight")
+    left = ca.SX.sym("left", 3)
+    right = ca.SX.sym("right", 3)
+    g = ca.SX.sym("g")
+    velocity = horseshoe_velocity(field, left, right, weight) + horseshoe_velocity(
+        field, _MIRROR * right, _MIRROR * left
+    )
+    return ca.Function(
+        "vlm_pair",
+        [field, weight, left, right, g],
+        [
+            velocity,
+            g * ca.jacobian(velocity, field).T,
+            g * ca.jacobian(velocity, left).T,
+            g * ca.jacobian(velocity, right).T,
+        ],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["velocity", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def source_columns(n_panels: int) -> ca.Function:
+    """Every source panel against every field point, as two nested maps of `pair_kernel`.
+
+    Inputs (M = n_panels):
+        field (3, M) [m]: field points, shared by all sources.
+        bound_weight (M, M) [-]: column k holds the weights the field points see for source k.
+        left, right (3, M) [m]: source bound-vortex vertices.
+        g (1, M) [m]: source circulations per unit V.
+    Outputs, rows indexed 3 i + c (field point i, velocity component c), per unit V:
+        induced (3M, 1) [-]: sum_k g_k v_ik, the induced velocity at each field point.
+        influence (3M, M) [-]: v_ik, column k (per unit g_k).
+        g_dfield (3M, 3): sum_k g_k d v_ik / d field_i, column d.
+        g_dleft, g_dright (3M, 3M): g_k d v_ik / d left_k, column 3 k + d (likewise right_k).
+    """
+    m = n_panels
+    pair = pair_kernel()
+    field = ca.MX.sym("field", 3, m)
+    weight = ca.MX.sym("bound_weight", m, 1)
+    left = ca.MX.sym("left", 3, 1)
+    right = ca.MX.sym("right", 3, 1)
+    g = ca.MX.sym("g")
+    # Inner map: one source against all field points (source inputs shared).
+    over_fields = pair.map("vlm_over_fields", "serial", m, [2, 3, 4], [])
+    velocity, g_dfield, g_dleft, g_dright = over_fields(field, weight.T, left, right, g)
+    column = ca.Function(
+        "vlm_column",
+        [field, weight, left, right, g],
+        [
+            ca.vec(velocity),
+            g * ca.vec(velocity),
+            g_dfield.T,
+            g_dleft.T,
+            g_dright.T,
+        ],
+    )
+    # Outer map: all sources; field points shared, the g-weighted sums reduced.
+    over_sources = column.map("vlm_over_sources", "serial", m, [0], [1, 2])
+    field_all = ca.MX.sym("field", 3, m)
+    weight_all = ca.MX.sym("bound_weight", m, m)
+    left_all = ca.MX.sym("left", 3, m)
+    right_all = ca.MX.sym("right", 3, m)
+    g_all = ca.MX.sym("g", 1, m)
+    influence, induced, g_dfield_sum, g_dleft_all, g_dright_all = over_sources(
+        field_all, weight_all, left_all, right_all, g_all
+    )
+    return ca.Function(
+        "vlm_sources",
+        [field_all, weight_all, left_all, right_all, g_all],
+        [induced, influence, g_dfield_sum, g_dleft_all, g_dright_all],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
+    )

@@ -1,0 +1,161 @@
+"""Wing and flight-condition inputs, validated once so the numerics never see bad data.
+
+A wing is described on the right half-span at N structural stations; the left half is its mirror
+image. Every array has shape (N,) and SI units; angles are in degrees, as in the design study.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["MIN_STATIONS", "FlightCondition", "InvalidInput", "Wing", "ISA_SEA_LEVEL_DENSITY"]
+
+MIN_STATIONS = 3
+ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
+
+
+class InvalidInput(ValueError):
+    """An input that cannot describe a physical wing or flight condition.
+
+    `field` names the offending input (e.g. ``"chord"``), `reason` says what is wrong with it.
+    """
+
+    def __init__(self, field: str, reason: str) -> None:
+        super().__init__(f"{field}: {reason}")
+        self.field = field
+        self.reason = reason
+
+
+def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
+    array = np.asarray(values, dtype=float)
+    if array.ndim == 0 and n is not None:
+        array = np.full(n, float(array))
+    if array.ndim != 1:
+        raise InvalidInput(name, "must be a one-dimensional list of numbers")
+    if n is not None and array.shape[0] != n:
+        raise InvalidInput(name, f"has {array.shape[0]} values but y has {n} stations")
+    if not np.all(np.isfinite(array)):
+        raise InvalidInput(name, "must contain only finite numbers")
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class Wing:
+    """A symmetric, unswept, flexible wing (right half; the left half is mirrored).
+
+    Attributes:
+        y: (N,) [m] spanwise station positions, y[0] = 0 at the root, strictly increasing.
+        chord: (N,) [m] chord length at each station, > 0.
+        elastic_axis: (N,) [-] elastic-axis position as a fraction of chord from the leading edge.
+            Each section is placed so that this point lies at x = 0.
+        bending_stiffness: (N,) [N m^2] flapwise EI, > 0.
+        torsional_stiffness: (N,) [N m^2] GJ, > 0.
+    """
+
+    y: np.ndarray
+    chord: np.ndarray
+    elastic_axis: np.ndarray
+    bending_stiffness: np.ndarray
+    torsional_stiffness: np.ndarray
+
+    @classmethod
+    def create(
+        cls,
+        y: object,
+        chord: object,
+        elastic_axis: object,
+        bending_stiffness: object,
+        torsional_stiffness: object,
+    ) -> Wing:
+        """Validate and normalise inputs; `elastic_axis` may be one number for every station."""
+        y_arr = _station_array("y", y, None)
+        n = y_arr.shape[0]
+        if n < MIN_STATIONS:
+            raise InvalidInput("y", f"needs at least {MIN_STATIONS} stations, got {n}")
+        if y_arr[0] != 0.0:
+            raise InvalidInput("y", "the first station must be the root, y[0] = 0")
+        if not np.all(np.diff(y_arr) > 0):
+            raise InvalidInput("y", "stations must be strictly increasing")
+        chord_arr = _station_array("chord", chord, n)
+        elastic_axis_arr = _station_array("elastic_axis", elastic_axis, n)
+        ei = _station_array("bending_stiffness", bending_stiffness, n)
+        gj = _station_array("torsional_stiffness", torsional_stiffness, n)
+        for name, values in (
+            ("chord", chord_arr),
+            ("bending_stiffness", ei),
+            ("torsional_stiffness", gj),
+        ):
+            if not np.all(values > 0):
+                raise InvalidInput(name, "must be positive at every station")
+        for array in (y_arr, chord_arr, elastic_axis_arr, ei, gj):
+            array.setflags(write=False)
+        return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj)
+
+    @property
+    def n_stations(self) -> int:
+        return int(self.y.shape[0])
+
+    @property
+    def semispan(self) -> float:
+        """[m]"""
+        return float(self.y[-1])
+
+    @property
+    def planform_area(self) -> float:
+        """Jig planform area of both halves [m^2] (trapezoidal panels between stations)."""
+        return float(np.sum((self.chord[1:] + self.chord[:-1]) * np.diff(self.y)))
+
+    def parameters(self, alpha_deg: float) -> np.ndarray:
+        """The numeric parameter vector of the compiled model: [y, c, x_ea, EI, GJ, alpha_deg]."""
+        return np.concatenate(
+            [
+                self.y,
+                self.chord,
+                self.elastic_axis,
+                self.bending_stiffness,
+                self.torsional_stiffness,
+                [alpha_deg],
+            ]
+        )
+
+
+@dataclass(frozen=True)
+class FlightCondition:
+    """Steady, symmetric flight.
+
+    Attributes:
+        velocity: [m/s] airspeed, > 0.
+        alpha: [deg] angle of attack of the jig shape.
+        density: [kg/m^3] air density, > 0.
+    """
+
+    velocity: float
+    alpha: float
+    density: float = ISA_SEA_LEVEL_DENSITY
+
+    def __post_init__(self) -> None:
+        for name in ("velocity", "alpha", "density"):
+            if not math.isfinite(getattr(self, name)):
+                raise InvalidInput(name, "must be a finite number")
+        if self.velocity <= 0:
+            raise InvalidInput("velocity", "must be positive")
+        if self.density <= 0:
+            raise InvalidInput("density", "must be positive")
+        if not -90.0 < self.alpha < 90.0:
+            raise InvalidInput("alpha", "must lie strictly between -90 and 90 degrees")
+
+    @property
+    def dynamic_pressure(self) -> float:
+        """q = rho V^2 / 2 [Pa]."""
+        return 0.5 * self.density * self.velocity**2
+
+    def at_velocity(self, velocity: float) -> FlightCondition:
+        return FlightCondition(velocity=velocity, alpha=self.alpha, density=self.density)
+
+    @staticmethod
+    def velocity_for(dynamic_pressure: float, density: float) -> float:
+        """V = sqrt(2 q / rho) [m/s]."""
+        return math.sqrt(2.0 * dynamic_pressure / density)
