@@ -1,0 +1,30 @@
+"""flexwing's numerical core: static aeroelastic equilibrium of a flexible wing.
+
+A vortex lattice (one chordwise panel per strip) and a cantilever beam share the heave and twist
+unknowns; the coupled equations are solved as one nonlinear system by Newton's method on an exact
+CasADi Jacobian, compiled once per mesh size. See the design study in shared/seed/.
+"""
+
+from solver.equilibrium import (
+    Equilibrium,
+    SolverOptions,
+    Stability,
+    linear_divergence_pressure,
+    solve,
+)
+from solver.errors import ConvergenceError, NoEquilibrium, SolverError
+from solver.wing import FlightCondition, InvalidInput, Wing
+
+__all__ = [
+    "ConvergenceError",
+    "Equilibrium",
+    "FlightCondition",
+    "InvalidInput",
+    "NoEquilibrium",
+    "SolverError",
+    "SolverOptions",
+    "Stability",
+    "Wing",
+    "linear_divergence_pressure",
+    "solve",
+]

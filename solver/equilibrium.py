@@ -1,0 +1,322 @@
+"""Static aeroelastic equilibrium of one wing at one flight condition."""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.compiled import CompiledModel, Evaluation, model_for
+from solver.errors import ConvergenceError
+from solver.newton import newton
+from solver.stability import divergence_pressure
+from solver.wing import FlightCondition, Wing
+
+__all__ = ["Equilibrium", "SolverOptions", "Stability", "solve", "linear_divergence_pressure"]
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Newton settings.
+
+    tolerance: max-norm of the residual at convergence (units in `solver.model`).
+    max_iterations: Newton iterations before giving up.
+    """
+
+    tolerance: float = 1e-10
+    max_iterations: int = 30
+
+
+@dataclass(frozen=True)
+class Stability:
+    """Static stability of an equilibrium and the wing's linear divergence.
+
+    stable: the equilibrium is statically stable, lambda(x*) > q.
+    margin: q / lambda(x*) [-]; 0 when no positive real lambda exists (never divergent).
+    local_divergence_pressure: lambda(x*) [Pa], None when it does not exist.
+    divergence_dynamic_pressure: classical linear divergence q_div at the unloaded jig shape
+        (alpha = 0) [Pa], None for a wing that never diverges.
+    divergence_velocity: sqrt(2 q_div / rho) at the flight's density [m/s], or None.
+    """
+
+    stable: bool
+    margin: float
+    local_divergence_pressure: float | None
+    divergence_dynamic_pressure: float | None
+    divergence_velocity: float | None
+
+
+@dataclass(frozen=True, eq=False)
+class Equilibrium:
+    """A converged equilibrium. Arrays over stations are (N,), over right-half panels (N-1,).
+
+    Stations: y [m], heave [m], slope [-], twist [deg], shear [N], bending_moment [N m],
+    torque [N m] (internal loads carried by the structure at each station).
+    Panels (root to tip): panel_y [m] deformed load location, panel_lift [N] vertical force,
+    panel_lift_per_span [N/m] (per jig strip width), panel_torque [N m] about the elastic axis.
+    Totals (both halves): lift, induced_drag [N]; CL, CDi on the jig planform area
+    `reference_area` [m^2]; `deformed_area` [m^2] is AeroSandbox's planform area of the deformed
+    wing (its CL uses it); rigid_lift [N] of the jig shape at the same condition.
+    """
+
+    wing: Wing
+    flight: FlightCondition
+    state: np.ndarray
+    heave: np.ndarray
+    slope: np.ndarray
+    twist: np.ndarray
+    shear: np.ndarray
+    bending_moment: np.ndarray
+    torque: np.ndarray
+    panel_y: np.ndarray
+    panel_lift: np.ndarray
+    panel_lift_per_span: np.ndarray
+    panel_torque: np.ndarray
+    lift: float
+    induced_drag: float
+    CL: float
+    CDi: float
+    reference_area: float
+    deformed_area: float
+    rigid_lift: float
+    stability: Stability
+    iterations: int
+    residual_norm: float
+    warm_start: bool
+    seconds: float
+    evaluation: Evaluation  # r0, r1, J0, J1 at `state`: warm starts and continuation reuse it
+
+    @property
+    def y(self) -> np.ndarray:
+        return self.wing.y
+
+    @property
+    def dynamic_pressure(self) -> float:
+        return self.flight.dynamic_pressure
+
+    @property
+    def lift_amplification(self) -> float:
+        """L / L_rigid [-]."""
+        return self.lift / self.rigid_lift if self.rigid_lift != 0 else math.nan
+
+    @property
+    def tip_heave(self) -> float:
+        return float(self.heave[-1])
+
+    @property
+    def tip_twist(self) -> float:
+        return float(self.twist[-1])
+
+    @property
+    def root_bending_moment(self) -> float:
+        return float(self.bending_moment[0])
+
+    @property
+    def root_torque(self) -> float:
+        return float(self.torque[0])
+
+
+def _outboard_sum(panel_values: np.ndarray) -> np.ndarray:
+    """(N-1,) per panel -> (N,) per station: sum over panels outboard of each station."""
+    return np.append(np.cumsum(panel_values[::-1])[::-1], 0.0)
+
+
+@dataclass(frozen=True)
+class _Loads:
+    force: np.ndarray  # (3, N-1) [N]
+    torque: np.ndarray  # (N-1,) [N m]
+    center: np.ndarray  # (3, N-1) [m]
+    vertex: np.ndarray  # (3, N) [m]
+
+    def lift_and_drag(self, alpha_deg: float) -> tuple[float, float]:
+        """Both halves: mirrored panels carry the same Fx and Fz."""
+        alpha = math.radians(alpha_deg)
+        fx, fz = 2 * self.force[0].sum(), 2 * self.force[2].sum()
+        return (
+            float(fz * math.cos(alpha) - fx * math.sin(alpha)),
+            float(fx * math.cos(alpha) + fz * math.sin(alpha)),
+        )
+
+
+def _loads(model: CompiledModel, x: np.ndarray, p: np.ndarray, q: float) -> _Loads:
+    force, torque, center, vertex = model.panel_loads(x, p)
+    return _Loads(q * force, q * torque.ravel(), center, vertex)
+
+
+def _parameter_key(wing: Wing) -> bytes:
+    return wing.parameters(0.0).tobytes()
+
+
+@functools.lru_cache(maxsize=256)
+def _linear_divergence_cached(key: bytes) -> float | None:
+    p = np.frombuffer(key, dtype=float).copy()
+    n = (p.size - 1) // 5
+    model = model_for(n)
+    jig = np.zeros(model.layout.n_unknowns)  # at alpha = 0 the jig carries no circulation
+    return divergence_pressure(model.evaluate(jig, p), model.layout)
+
+
+def linear_divergence_pressure(wing: Wing) -> float | None:
+    """Classical linear divergence dynamic pressure [Pa] at the unloaded jig, or None."""
+    return _linear_divergence_cached(_parameter_key(wing))
+
+
+@functools.lru_cache(maxsize=256)
+def _rigid_solution_cached(key: bytes) -> np.ndarray:
+    """Jig state with the circulation of the rigid wing (q = 0 makes the structure rows trivial)."""
+    p = np.frombuffer(key, dtype=float)
+    model = model_for((p.size - 1) // 5)
+    jig = np.zeros(model.layout.n_unknowns)
+    evaluation = model.evaluate(jig, p)
+    # The residual is linear in the circulation at fixed geometry: one step is exact.
+    solution = -np.linalg.solve(evaluation.jacobian0, evaluation.r0)
+    solution.setflags(write=False)
+    return solution
+
+
+def rigid_solution(wing: Wing, alpha_deg: float) -> np.ndarray:
+    """(4N-1,) jig state (u = u' = theta = 0) with the rigid wing's circulations."""
+    return _rigid_solution_cached(wing.parameters(alpha_deg).tobytes())
+
+
+def _deformed_area(wing: Wing, vertex: np.ndarray) -> float:
+    """AeroSandbox's planform area: mean chord times y-z distance of quarter-chord points."""
+    span_yz = np.hypot(np.diff(vertex[1]), np.diff(vertex[2]))
+    return float(np.sum((wing.chord[1:] + wing.chord[:-1]) * span_yz))
+
+
+def _stability(
+    wing: Wing, flight: FlightCondition, evaluation: Evaluation, model: CompiledModel
+) -> Stability:
+    q = flight.dynamic_pressure
+    local = divergence_pressure(evaluation, model.layout)
+    linear = linear_divergence_pressure(wing)
+    return Stability(
+        stable=local is None or local > q,
+        margin=0.0 if local is None else q / local,
+        local_divergence_pressure=local,
+        divergence_dynamic_pressure=linear,
+        divergence_velocity=(
+            None if linear is None else FlightCondition.velocity_for(linear, flight.density)
+        ),
+    )
+
+
+def equilibrium_from_state(
+    wing: Wing,
+    flight: FlightCondition,
+    x: np.ndarray,
+    evaluation: Evaluation,
+    *,
+    iterations: int,
+    residual_norm: float,
+    warm_start: bool,
+    started: float,
+) -> Equilibrium:
+    """Post-process a converged state into every reported quantity."""
+    model = model_for(wing.n_stations)
+    layout = model.layout
+    q = flight.dynamic_pressure
+    p = wing.parameters(flight.alpha)
+    loads = _loads(model, x, p, q)
+    rigid = _loads(model, rigid_solution(wing, flight.alpha), p, q)
+    lift, drag = loads.lift_and_drag(flight.alpha)
+    rigid_lift, _ = rigid.lift_and_drag(flight.alpha)
+    lift_force = loads.force[2]
+    panel_y = loads.center[1]
+    shear = _outboard_sum(lift_force)
+    bending_moment = _outboard_sum(lift_force * panel_y) - wing.y * shear
+    reference_area = wing.planform_area
+    return Equilibrium(
+        wing=wing,
+        flight=flight,
+        state=x,
+        heave=x[layout.heave].copy(),
+        slope=x[layout.slope].copy(),
+        twist=x[layout.twist].copy(),
+        shear=shear,
+        bending_moment=bending_moment,
+        torque=_outboard_sum(loads.torque),
+        panel_y=panel_y,
+        panel_lift=lift_force,
+        panel_lift_per_span=lift_force / np.diff(wing.y),
+        panel_torque=loads.torque,
+        lift=lift,
+        induced_drag=drag,
+        CL=lift / (q * reference_area),
+        CDi=drag / (q * reference_area),
+        reference_area=reference_area,
+        deformed_area=_deformed_area(wing, loads.vertex),
+        rigid_lift=rigid_lift,
+        stability=_stability(wing, flight, evaluation, model),
+        iterations=iterations,
+        residual_norm=residual_norm,
+        warm_start=warm_start,
+        seconds=time.perf_counter() - started,
+        evaluation=evaluation,
+    )
+
+
+def _initial_point(
+    wing: Wing, flight: FlightCondition, initial_guess: Equilibrium | np.ndarray | None
+) -> tuple[np.ndarray, Evaluation | None, bool]:
+    """Starting state, its evaluation if already known, and whether it is a warm start."""
+    n_unknowns = 4 * wing.n_stations - 1
+    if initial_guess is None:
+        return np.array(rigid_solution(wing, flight.alpha)), None, False
+    if isinstance(initial_guess, Equilibrium):
+        same_problem = (
+            initial_guess.wing.parameters(initial_guess.flight.alpha).tobytes()
+            == wing.parameters(flight.alpha).tobytes()
+        )
+        # Same wing and alpha: the stored r0, r1, J0, J1 hold at any q, so the first Newton step
+        # is the branch-tangent predictor at no evaluation cost.
+        return initial_guess.state.copy(), initial_guess.evaluation if same_problem else None, True
+    guess = np.asarray(initial_guess, dtype=float)
+    if guess.shape != (n_unknowns,) or not np.all(np.isfinite(guess)):
+        raise ValueError(f"initial_guess must be a finite state of shape ({n_unknowns},)")
+    return guess.copy(), None, True
+
+
+def solve(
+    wing: Wing,
+    flight: FlightCondition,
+    initial_guess: Equilibrium | np.ndarray | None = None,
+    options: SolverOptions | None = None,
+) -> Equilibrium:
+    """The static aeroelastic equilibrium of `wing` at `flight`.
+
+    Starts from the rigid jig solution, or from `initial_guess` (an equilibrium of the same wing,
+    e.g. at another airspeed, or a raw state vector). Raises `ConvergenceError` if Newton does not
+    converge; the returned equilibrium may be statically unstable: check `stability.stable`.
+    """
+    started = time.perf_counter()
+    options = options or SolverOptions()
+    model = model_for(wing.n_stations)
+    p = wing.parameters(flight.alpha)
+    x0, evaluation0, warm = _initial_point(wing, flight, initial_guess)
+    result = newton(
+        lambda x: model.evaluate(x, p),
+        x0,
+        flight.dynamic_pressure,
+        options.tolerance,
+        options.max_iterations,
+        evaluation0,
+    )
+    if not result.converged:
+        raise ConvergenceError(
+            flight.velocity, result.iterations, result.residual_norm, result.reason
+        )
+    return equilibrium_from_state(
+        wing,
+        flight,
+        result.x,
+        result.evaluation,
+        iterations=result.iterations,
+        residual_norm=result.residual_norm,
+        warm_start=warm,
+        started=started,
+    )
