@@ -13,6 +13,7 @@ from solver.equilibrium import (
     solve,
 )
 from solver.errors import ConvergenceError, NoEquilibrium, SolverError
+from solver.sweep import SweepPoint, SweepResult, sweep
 from solver.wing import FlightCondition, InvalidInput, Wing
 
 __all__ = [
@@ -24,7 +25,10 @@ __all__ = [
     "SolverError",
     "SolverOptions",
     "Stability",
+    "SweepPoint",
+    "SweepResult",
     "Wing",
     "linear_divergence_pressure",
     "solve",
+    "sweep",
 ]

@@ -53,7 +53,8 @@ def _compiler() -> str:
 
 
 def _library_path(n: int) -> Path:
-    tag = f"n{n}-model{MODEL_VERSION}-casadi{ca.__version__}-{platform.machine()}-{_OPTIMISATION}"
+    casadi_version = ca.__version__  # type: ignore[attr-defined]
+    tag = f"n{n}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}-{_OPTIMISATION}"
     return cache_dir() / f"flexwing-{tag}.so"
 
 
@@ -81,14 +82,13 @@ class _BufferedCall:
         self._lock = threading.Lock()
         self._x = np.zeros(function.nnz_in(0))
         self._p = np.zeros(function.nnz_in(1))
-        self._outputs = [
-            np.zeros(function.size_out(i), order="F") for i in range(function.n_out())
-        ]
+        self._outputs = [np.zeros(function.size_out(i), order="F") for i in range(function.n_out())]
         self._buffer, self._evaluate = function.buffer()
-        self._buffer.set_arg(0, memoryview(self._x))
-        self._buffer.set_arg(1, memoryview(self._p))
+        self._buffer.set_arg(0, memoryview(self._x))  # type: ignore[call-arg, arg-type]
+        self._buffer.set_arg(1, memoryview(self._p))  # type: ignore[call-arg, arg-type]
         for i, out in enumerate(self._outputs):
-            self._buffer.set_res(i, memoryview(out.ravel(order="K")))
+            # Dense outputs are written column-major; ravel("K") of an F-ordered array is a view.
+            self._buffer.set_res(i, memoryview(out.ravel(order="K")))  # type: ignore[call-arg, arg-type]
 
     def __call__(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         with self._lock:
@@ -205,7 +205,9 @@ def model_for(n: int) -> CompiledModel:
                 model._use_library(library)
         if not model.compiled and _compilation_enabled():
             thread = threading.Thread(
-                target=_background_compile, args=(model, functions), daemon=True,
+                target=_background_compile,
+                args=(model, functions),
+                daemon=True,
                 name=f"flexwing-compile-{n}",
             )
             _compile_threads[n] = thread

@@ -11,7 +11,8 @@ Equations (4N - 1), in this order:
     root clamps (3)          u_0 = 0, u'_0 = 0, theta_0 = 0
     heave kinematics (N-1)   u_{i+1} - u_i - h_i (u'_i + u'_{i+1}) / 2 = 0                   [m]
     bending (N-1)            u'_{i+1} - u'_i - h_i (M_i/EI_i + M_{i+1}/EI_{i+1}) / 2 = 0     [-]
-    torsion (N-1)            theta_{i+1} - theta_i - h_i (180/pi)(T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2 = 0  [deg]
+    torsion (N-1)            theta_{i+1} - theta_i
+                               - h_i (180/pi)(T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2 = 0           [deg]
     flow tangency (N-1)      (V_hat + induced_i) . n_i = 0                                   [-]
 The trapezoidal rule is AeroSandbox's ``constrain_derivative``; the tangency rows are per unit V.
 
@@ -273,7 +274,9 @@ def build_coupled_function(n: int) -> ca.Function:
         return bending, _outboard_sum(torque)
 
     bending, torsion = internal_loads(loads[:m], loads[m : 2 * m], loads[2 * m :])
-    bending_x, torsion_x = internal_loads(loads_x[:m, :], loads_x[m : 2 * m, :], loads_x[2 * m :, :])
+    bending_x, torsion_x = internal_loads(
+        loads_x[:m, :], loads_x[m : 2 * m, :], loads_x[2 * m :, :]
+    )
 
     h = y[1:] - y[:-1]
 

@@ -3,7 +3,8 @@
 Each right-half panel k carries a horseshoe vortex of strength Gamma_k = V g_k: a bound leg from its
 inboard quarter-chord vertex A to its outboard vertex B, and two trailing legs running to +x
 infinity (geometry axes, not along the freestream: AeroSandbox's default). The left half is the
-mirror image in y with the same circulation, so its horseshoe runs from m(B) to m(A), m = diag(1,-1,1).
+mirror image in y with the same circulation, so its horseshoe runs from m(B) to m(A),
+m = diag(1, -1, 1).
 
 The induced velocity of a unit horseshoe at a field point (Drela's form, as in AeroSandbox's
 ``calculate_induced_velocity_horseshoe``), with a = P - A, b = P - B and u = [1, 0, 0]:
