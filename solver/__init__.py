@@ -5,6 +5,16 @@ unknowns; the coupled equations are solved as one nonlinear system by Newton's m
 CasADi Jacobian, compiled once per mesh size. See the design study in shared/seed/.
 """
 
+from solver.divergence import (
+    DivergenceSummary,
+    FitDivergence,
+    Fold,
+    LinearDivergence,
+    divergence_summary,
+    find_fold,
+    fit_divergence,
+    linear_divergence,
+)
 from solver.equilibrium import (
     Equilibrium,
     SolverOptions,
@@ -18,9 +28,13 @@ from solver.wing import FlightCondition, InvalidInput, Wing
 
 __all__ = [
     "ConvergenceError",
+    "DivergenceSummary",
     "Equilibrium",
+    "FitDivergence",
     "FlightCondition",
+    "Fold",
     "InvalidInput",
+    "LinearDivergence",
     "NoEquilibrium",
     "SolverError",
     "SolverOptions",
@@ -28,6 +42,10 @@ __all__ = [
     "SweepPoint",
     "SweepResult",
     "Wing",
+    "divergence_summary",
+    "find_fold",
+    "fit_divergence",
+    "linear_divergence",
     "linear_divergence_pressure",
     "solve",
     "sweep",

@@ -6,6 +6,7 @@ import functools
 import math
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,6 +15,9 @@ from solver.errors import ConvergenceError
 from solver.newton import newton
 from solver.stability import divergence_pressure
 from solver.wing import FlightCondition, Wing
+
+if TYPE_CHECKING:
+    from solver.divergence import Fold
 
 __all__ = ["Equilibrium", "SolverOptions", "Stability", "solve", "linear_divergence_pressure"]
 
@@ -24,10 +28,12 @@ class SolverOptions:
 
     tolerance: max-norm of the residual at convergence (units in `solver.model`).
     max_iterations: Newton iterations before giving up.
+    find_fold: also locate the fold of the branch from the jig shape (`Equilibrium.fold`).
     """
 
     tolerance: float = 1e-10
     max_iterations: int = 30
+    find_fold: bool = False
 
 
 @dataclass(frozen=True)
@@ -88,6 +94,7 @@ class Equilibrium:
     warm_start: bool
     seconds: float
     evaluation: Evaluation  # r0, r1, J0, J1 at `state`: warm starts and continuation reuse it
+    fold: Fold | None = None  # the branch's fold, with `SolverOptions.find_fold` (issue 3)
 
     @property
     def y(self) -> np.ndarray:
@@ -290,8 +297,11 @@ def solve(
     """The static aeroelastic equilibrium of `wing` at `flight`.
 
     Starts from the rigid jig solution, or from `initial_guess` (an equilibrium of the same wing,
-    e.g. at another airspeed, or a raw state vector). Raises `ConvergenceError` if Newton does not
-    converge; the returned equilibrium may be statically unstable: check `stability.stable`.
+    e.g. at another airspeed, or a raw state vector). If Newton fails or lands on a statically
+    unstable equilibrium, the branch from the jig shape decides (`solver.recovery`): beyond its
+    fold, `NoEquilibrium`; below it, Newton again from the branch, then `ConvergenceError`. An
+    unstable equilibrium is returned only from a start the caller chose, flagged by
+    `stability.stable`.
     """
     started = time.perf_counter()
     options = options or SolverOptions()
@@ -307,16 +317,24 @@ def solve(
         evaluation0,
     )
     if not result.converged:
-        raise ConvergenceError(
+        failure = ConvergenceError(
             flight.velocity, result.iterations, result.residual_norm, result.reason
         )
-    return equilibrium_from_state(
-        wing,
-        flight,
-        result.x,
-        result.evaluation,
-        iterations=result.iterations,
-        residual_norm=result.residual_norm,
-        warm_start=warm,
-        started=started,
-    )
+        equilibrium = None
+    else:
+        failure = None
+        equilibrium = equilibrium_from_state(
+            wing,
+            flight,
+            result.x,
+            result.evaluation,
+            iterations=result.iterations,
+            residual_norm=result.residual_norm,
+            warm_start=warm,
+            started=started,
+        )
+        if equilibrium.stability.stable and not options.find_fold:
+            return equilibrium
+    from solver.recovery import settle  # imported here: it builds on this module
+
+    return settle(wing, flight, initial_guess, equilibrium, failure, options, started)

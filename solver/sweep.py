@@ -1,12 +1,20 @@
-"""Airspeed sweeps: each point warm-started from the previous equilibrium on the branch."""
+"""Airspeed sweeps: each point warm-started from the previous equilibrium on the branch, and the
+wing's divergence reported alongside (linear, the study's fit, and the fold of the branch)."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from solver.divergence import (
+    DivergenceSummary,
+    find_fold,
+    fit_divergence,
+    linear_divergence,
+    search_velocity_limit,
+)
 from solver.equilibrium import Equilibrium, SolverOptions, solve
-from solver.errors import SolverError
+from solver.errors import NoEquilibrium, SolverError
 from solver.wing import FlightCondition, Wing
 
 __all__ = ["SweepPoint", "SweepResult", "sweep"]
@@ -23,7 +31,14 @@ class SweepPoint:
 
 @dataclass(frozen=True)
 class SweepResult:
+    """The points in the requested order and the wing's divergence.
+
+    divergence.fold is searched to at least 1.5 times the fastest requested speed and past the
+    linear divergence speed; divergence.fit uses the sweep's stable equilibria.
+    """
+
     points: list[SweepPoint]
+    divergence: DivergenceSummary
 
     @property
     def equilibria(self) -> list[Equilibrium]:
@@ -39,19 +54,34 @@ def sweep(
 ) -> SweepResult:
     """Solve at each airspeed [m/s] in the given order.
 
-    Each solve starts from the last converged equilibrium: its stored Jacobian, re-targeted to the
-    new dynamic pressure, gives the first Newton step (the branch-tangent predictor) for free.
-    A point that fails is recorded with its error and the next one starts from the last success.
+    The branch from the jig shape is followed first, to its fold: a speed beyond the fold is
+    answered with `NoEquilibrium` without a solve (Newton would fail there, or land on another,
+    unstable branch). Each other solve starts from the last stable equilibrium: its stored
+    Jacobian, re-targeted to the new dynamic pressure, gives the first Newton step (the
+    branch-tangent predictor) for free; `solve` falls back to the branch if that fails. A point
+    that fails is recorded with its error and the next one starts from the last success.
     """
+    limit = search_velocity_limit(wing, density, max(velocities, default=0.0))
+    fold = find_fold(wing, alpha, density, limit)
     points: list[SweepPoint] = []
     previous: Equilibrium | None = None
     for velocity in velocities:
         flight = FlightCondition(velocity=velocity, alpha=alpha, density=density)
+        if fold.velocity is not None and velocity > fold.velocity:
+            points.append(SweepPoint(velocity, None, NoEquilibrium(velocity, fold.velocity)))
+            continue
         try:
             equilibrium = solve(wing, flight, previous, options)
         except SolverError as error:
             points.append(SweepPoint(velocity, None, error))
             continue
         points.append(SweepPoint(velocity, equilibrium, None))
-        previous = equilibrium
-    return SweepResult(points)
+        if equilibrium.stability.stable:
+            previous = equilibrium
+    stable = [point.equilibrium for point in points if point.equilibrium is not None]
+    divergence = DivergenceSummary(
+        linear=linear_divergence(wing, density),
+        fit=fit_divergence(stable),
+        fold=fold,
+    )
+    return SweepResult(points, divergence)

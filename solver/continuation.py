@@ -1,0 +1,355 @@
+"""Pseudo-arclength continuation of the equilibrium branch from the jig shape, and its fold.
+
+The branch is the curve of solutions z = (x, q) of r(x, q) = r0(x) + q r1(x) = 0 that starts at
+the rigid jig solution (q = 0) and follows q upward. Along it, the augmented Jacobian
+[dr/dx, dr/dq] = [J0 + q J1, r1] has full row rank, so the unit tangent t is defined even where
+J = J0 + q J1 alone is singular. That is the fold: the tangent's q-component dq/ds changes sign,
+the branch turns back to lower q, and no equilibrium on it exists beyond q_fold.
+
+Coordinates. x mixes metres, degrees and circulations, and q is in pascals, so arclength is
+measured in scaled coordinates w = z / scale: heave per semispan, slope, twist in radians,
+circulation per mean chord (each block divided by sqrt(N), so it counts as its RMS), q per a
+characteristic pressure. Only the step sizes depend on this choice, not the branch or its fold.
+
+Each step: predictor w + ds t; corrector Newton on the bordered system
+    [J, r1 ] dw = -[ r(x, q)                ]
+    [ t^T   ]       [ t^T (w - w_predicted) ]
+(columns scaled), one model evaluation per iteration; the tangent at the converged point costs
+one more linear solve with the evaluation Newton already made there. The fold, once bracketed by a
+sign change of dq/ds, is located by regula falsi (Illinois) on dq/ds along the hyperplanes of the
+last step: near a fold dq/ds is linear in arclength and q quadratic, so a few iterations give q
+to ~1e-10 relative.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.compiled import Evaluation
+from solver.model import Layout
+
+__all__ = ["BranchPoint", "Branch", "ContinuationSettings", "trace_branch", "branch_scales"]
+
+
+@dataclass(frozen=True)
+class ContinuationSettings:
+    """Step control of the continuation, in scaled coordinates (see the module docstring).
+
+    tolerance: max-norm of r at a corrected point (units in `solver.model`).
+    initial_step, min_step, max_step: arclength steps [-].
+    max_corrector_iterations: Newton iterations before a step is rejected and halved.
+    target_correction: the first corrector update we aim for, relative to the step: the
+        predictor's error grows as ds^2 times the branch curvature, so this bounds the curvature
+        per step.
+    max_turn: [rad] largest angle between consecutive tangents of an accepted step (so a step
+        cannot jump across the fold onto a distant part of the curve unnoticed).
+    max_steps: accepted steps before giving up.
+    fold_tolerance: |dq/ds| at which the fold counts as located. q is quadratic in arclength
+        there, so q's relative error is about this squared.
+    """
+
+    tolerance: float = 1e-10
+    initial_step: float = 0.1
+    min_step: float = 1e-6
+    max_step: float = 0.5
+    max_corrector_iterations: int = 6
+    target_correction: float = 0.05
+    max_turn: float = 0.35
+    max_steps: int = 200
+    fold_tolerance: float = 1e-6
+    max_fold_iterations: int = 12
+
+
+@dataclass(frozen=True)
+class BranchPoint:
+    """A converged equilibrium on the branch.
+
+    state: (4N-1,) x at this point (units in `solver.model`).
+    dynamic_pressure: q [Pa].
+    tangent: (4N,) unit tangent dw/ds in scaled coordinates, oriented along the branch.
+    arclength: s [-] from the jig, in scaled coordinates (chord lengths between points).
+    """
+
+    state: np.ndarray
+    dynamic_pressure: float
+    tangent: np.ndarray
+    arclength: float
+
+    @property
+    def dq_ds(self) -> float:
+        """The tangent's q-component (scaled): positive before the fold, negative after."""
+        return float(self.tangent[-1])
+
+
+@dataclass(frozen=True)
+class Branch:
+    """The branch from the jig shape up to its fold or to the search limit.
+
+    points: jig first, ordered along the branch; if `folded`, the last point is the fold.
+    scale: (4N,) z = scale * w.
+    q_limit: [Pa] the search limit it was traced for.
+    evaluations: model evaluations spent.
+    reason: why it stopped short of both the fold and q_limit (None otherwise).
+    """
+
+    points: tuple[BranchPoint, ...]
+    folded: bool
+    scale: np.ndarray
+    q_limit: float
+    evaluations: int
+    reason: str | None = None
+
+    @property
+    def fold(self) -> BranchPoint | None:
+        return self.points[-1] if self.folded else None
+
+    @property
+    def reached_pressure(self) -> float:
+        """[Pa] the largest q on the branch that was followed."""
+        return max(point.dynamic_pressure for point in self.points)
+
+    def start_for(self, q: float) -> np.ndarray:
+        """(4N-1,) a starting state for Newton at q [Pa] on the stable part of the branch.
+
+        Cubic Hermite interpolation in arclength between the two branch points that bracket q
+        (error O(ds^4), so Newton starts well inside its basin even close to the fold); beyond
+        the branch's reach, its last point.
+        """
+        points = self.points
+        for left, right in itertools.pairwise(points):
+            if left.dynamic_pressure <= q <= right.dynamic_pressure and right.dq_ds >= 0:
+                return self._interpolate(left, right, q)
+        return points[-1].state.copy()
+
+    def _interpolate(self, left: BranchPoint, right: BranchPoint, q: float) -> np.ndarray:
+        w_left = _scaled(left.state, left.dynamic_pressure, self.scale)
+        w_right = _scaled(right.state, right.dynamic_pressure, self.scale)
+        h = right.arclength - left.arclength
+
+        def hermite(tau: float) -> np.ndarray:
+            tau2, tau3 = tau * tau, tau * tau * tau
+            return (
+                (2 * tau3 - 3 * tau2 + 1) * w_left
+                + (tau3 - 2 * tau2 + tau) * h * left.tangent
+                + (-2 * tau3 + 3 * tau2) * w_right
+                + (tau3 - tau2) * h * right.tangent
+            )
+
+        target = q / self.scale[-1]
+        low, high = 0.0, 1.0
+        # q(tau) rises from the left end to the right end of a pre-fold segment: bisect.
+        for _ in range(60):
+            middle = 0.5 * (low + high)
+            if hermite(middle)[-1] < target:
+                low = middle
+            else:
+                high = middle
+        return hermite(0.5 * (low + high))[:-1] * self.scale[:-1]
+
+
+def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: float) -> np.ndarray:
+    """(4N,) scale factors z = scale * w (see the module docstring)."""
+    n = layout.n
+    rms = math.sqrt(n)
+    scale = np.empty(layout.n_unknowns + 1)
+    scale[layout.heave] = semispan * rms
+    scale[layout.slope] = rms
+    scale[layout.twist] = math.degrees(1.0) * rms
+    scale[layout.circulation] = mean_chord * rms
+    scale[-1] = q_scale
+    return scale
+
+
+def _scaled(x: np.ndarray, q: float, scale: np.ndarray) -> np.ndarray:
+    return np.append(x, q) / scale
+
+
+def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarray) -> np.ndarray:
+    """(4N, 4N) [[J scale_x, r1 scale_q], [row]]: the scaled augmented Jacobian, bordered."""
+    n = evaluation.r0.size
+    matrix = np.empty((n + 1, n + 1))
+    matrix[:n, :n] = evaluation.jacobian(q) * scale[:-1]
+    matrix[:n, n] = evaluation.r1 * scale[-1]
+    matrix[n] = row
+    return matrix
+
+
+def _tangent(evaluation: Evaluation, q: float, scale: np.ndarray, previous: np.ndarray):
+    """Unit tangent at (x, q), oriented so that its projection on `previous` is positive."""
+    rhs = np.zeros(previous.size)
+    rhs[-1] = 1.0
+    tangent = np.linalg.solve(_bordered(evaluation, q, scale, previous), rhs)
+    return tangent / np.linalg.norm(tangent)
+
+
+@dataclass
+class _Corrected:
+    w: np.ndarray
+    evaluation: Evaluation
+    tangent: np.ndarray
+    first_correction: float  # [-] norm of the first Newton update (the predictor's error)
+
+
+class _Tracer:
+    """State of one continuation run: the model, its scaling and the evaluation count."""
+
+    def __init__(
+        self,
+        evaluate: Callable[[np.ndarray], Evaluation],
+        scale: np.ndarray,
+        settings: ContinuationSettings,
+    ) -> None:
+        self.evaluate_x = evaluate
+        self.scale = scale
+        self.settings = settings
+        self.evaluations = 0
+
+    def evaluate(self, w: np.ndarray) -> Evaluation:
+        self.evaluations += 1
+        return self.evaluate_x(w[:-1] * self.scale[:-1])
+
+    def correct(self, w_start: np.ndarray, normal: np.ndarray, offset: float) -> _Corrected | None:
+        """Newton on r = 0 within the hyperplane normal . w = offset, from w_start."""
+        w = w_start.copy()
+        first_correction = 0.0
+        for iteration in range(self.settings.max_corrector_iterations + 1):
+            evaluation = self.evaluate(w)
+            q = w[-1] * self.scale[-1]
+            residual = evaluation.residual(q)
+            if not np.all(np.isfinite(residual)):
+                return None
+            if np.max(np.abs(residual)) <= self.settings.tolerance and iteration > 0:
+                try:
+                    tangent = _tangent(evaluation, q, self.scale, normal)
+                except np.linalg.LinAlgError:
+                    return None
+                return _Corrected(w, evaluation, tangent, first_correction)
+            if iteration == self.settings.max_corrector_iterations:
+                return None
+            rhs = np.append(residual, normal @ w - offset)
+            try:
+                update = np.linalg.solve(_bordered(evaluation, q, self.scale, normal), rhs)
+            except np.linalg.LinAlgError:
+                return None
+            if iteration == 0:
+                first_correction = float(np.linalg.norm(update))
+            w = w - update
+        return None
+
+
+def trace_branch(
+    evaluate: Callable[[np.ndarray], Evaluation],
+    jig_state: np.ndarray,
+    scale: np.ndarray,
+    q_limit: float,
+    settings: ContinuationSettings | None = None,
+) -> Branch:
+    """Follow the branch from (jig_state, q = 0) until its fold or until q >= q_limit [Pa].
+
+    `evaluate(x)` returns r0, r1, J0, J1 at x for the wing and alpha of interest; `jig_state`
+    must solve r0 = 0 (the rigid solution, which is exact at q = 0).
+    """
+    settings = settings or ContinuationSettings()
+    tracer = _Tracer(evaluate, scale, settings)
+    w = _scaled(jig_state, 0.0, scale)
+    evaluation = tracer.evaluate(w)
+    upward = np.zeros(w.size)
+    upward[-1] = 1.0
+    tangent = _tangent(evaluation, 0.0, scale, upward)
+    points = [BranchPoint(jig_state.copy(), 0.0, tangent, 0.0)]
+
+    def finish(folded: bool, reason: str | None = None) -> Branch:
+        return Branch(tuple(points), folded, scale, q_limit, tracer.evaluations, reason)
+
+    step = settings.initial_step
+    for _ in range(settings.max_steps):
+        current = points[-1]
+        w = _scaled(current.state, current.dynamic_pressure, scale)
+        predicted = w + step * current.tangent
+        corrected = tracer.correct(predicted, current.tangent, float(current.tangent @ predicted))
+        turn = (
+            math.acos(min(1.0, float(corrected.tangent @ current.tangent)))
+            if corrected is not None
+            else math.inf
+        )
+        if corrected is None or turn > settings.max_turn:
+            step /= 2
+            if step < settings.min_step:
+                return finish(False, _stalled(current))
+            continue
+        point = _point(corrected, scale, current)
+        if point.dq_ds <= 0:
+            points.append(_locate_fold(tracer, current, point))
+            return finish(True)
+        points.append(point)
+        if point.dynamic_pressure >= q_limit:
+            return finish(False)
+        # Aim the next predictor error and turn at their targets; the predictor's error grows
+        # as step^2, the turn as step.
+        growth = min(
+            math.sqrt(settings.target_correction * step / max(corrected.first_correction, 1e-300)),
+            settings.max_turn / 2 / max(turn, 1e-300),
+            2.0,
+        )
+        step = min(max(growth, 0.5) * step, settings.max_step)
+    return finish(False, f"no fold within {settings.max_steps} continuation steps")
+
+
+def _stalled(point: BranchPoint) -> str:
+    return f"continuation stalled at q = {point.dynamic_pressure:.6g} Pa (step below minimum)"
+
+
+def _point(corrected: _Corrected, scale: np.ndarray, previous: BranchPoint) -> BranchPoint:
+    """A branch point from a corrected one; arclength accumulates chord lengths."""
+    x = corrected.w[:-1] * scale[:-1]
+    q = float(corrected.w[-1] * scale[-1])
+    chord = np.linalg.norm(corrected.w - _scaled(previous.state, previous.dynamic_pressure, scale))
+    return BranchPoint(x, q, corrected.tangent, previous.arclength + float(chord))
+
+
+def _locate_fold(tracer: _Tracer, before: BranchPoint, after: BranchPoint) -> BranchPoint:
+    """The fold between `before` (dq/ds > 0) and `after` (dq/ds <= 0).
+
+    Points are parameterised by their offset sigma along `before`'s tangent (the hyperplanes of
+    the step that bracketed the fold); dq/ds(sigma) changes sign on [0, sigma_after], and
+    Illinois regula falsi finds its root, each trial point started from the chord between the
+    current bracket ends.
+    """
+    scale = tracer.scale
+    normal = before.tangent
+    w_before = _scaled(before.state, before.dynamic_pressure, scale)
+    w_after = _scaled(after.state, after.dynamic_pressure, scale)
+    low = (0.0, before.dq_ds, w_before)
+    high = (float(normal @ (w_after - w_before)), after.dq_ds, w_after)
+    best = after if abs(after.dq_ds) < before.dq_ds else before
+    side = 0
+    for _ in range(tracer.settings.max_fold_iterations):
+        (s_low, f_low, w_low), (s_high, f_high, w_high) = low, high
+        if abs(best.dq_ds) <= tracer.settings.fold_tolerance:
+            break
+        sigma = s_low - f_low * (s_high - s_low) / (f_high - f_low)
+        fraction = (sigma - s_low) / (s_high - s_low)
+        start = w_low + fraction * (w_high - w_low)
+        corrected = tracer.correct(start, normal, float(normal @ w_before) + sigma)
+        if corrected is None:
+            break
+        # Hyperplanes orthogonal to `normal` keep the orientation of `before`'s tangent.
+        trial = _point(corrected, scale, before)
+        if abs(trial.dq_ds) < abs(best.dq_ds):
+            best = trial
+        if trial.dq_ds > 0:
+            low = (sigma, trial.dq_ds, corrected.w)
+            if side == 1:  # Illinois: halve the stale end's weight so both ends move
+                high = (s_high, f_high / 2, w_high)
+            side = 1
+        else:
+            high = (sigma, trial.dq_ds, corrected.w)
+            if side == -1:
+                low = (s_low, f_low / 2, w_low)
+            side = -1
+    return best
