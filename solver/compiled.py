@@ -31,7 +31,13 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from solver.model import MODEL_VERSION, Layout, build_coupled_function, build_panel_loads_function
+from solver.model import (
+    MODEL_VERSION,
+    Layout,
+    build_coupled_function,
+    build_panel_loads_function,
+    build_residual_function,
+)
 
 __all__ = ["CompiledModel", "Evaluation", "model_for", "compile_now", "cache_dir"]
 
@@ -105,13 +111,20 @@ class CompiledModel:
     n: int
     layout: Layout
     _coupled: _BufferedCall
+    _residual: _BufferedCall
     _panel_loads: _BufferedCall
     compiled: bool = False
     _swap_lock: threading.Lock = field(default_factory=threading.Lock)
 
     def evaluate(self, x: np.ndarray, p: np.ndarray) -> Evaluation:
+        """Residual parts and exact Jacobians at x (about 4x the cost of `residual`)."""
         r0, r1, j0, j1 = self._coupled(x, p)
         return Evaluation(r0.ravel(), r1.ravel(), j0, j1)
+
+    def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(r0, r1) at x, without derivatives."""
+        r0, r1 = self._residual(x, p)
+        return r0.ravel(), r1.ravel()
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         """[force (3, N-1) per unit q, torque (1, N-1) per unit q, vortex_center, vortex_vertex]."""
@@ -119,9 +132,11 @@ class CompiledModel:
 
     def _use_library(self, library: Path) -> None:
         coupled = ca.external(f"flexwing_coupled_{self.n}", str(library))
+        residual = ca.external(f"flexwing_residual_{self.n}", str(library))
         loads = ca.external(f"flexwing_panel_loads_{self.n}", str(library))
         with self._swap_lock:
             self._coupled = _BufferedCall(coupled)
+            self._residual = _BufferedCall(residual)
             self._panel_loads = _BufferedCall(loads)
             self.compiled = True
 
@@ -131,13 +146,15 @@ _models_lock = threading.Lock()
 _compile_threads: dict[int, threading.Thread] = {}
 
 
-def _symbolic_functions(n: int) -> tuple[ca.Function, ca.Function]:
-    return build_coupled_function(n), build_panel_loads_function(n)
+_Functions = tuple[ca.Function, ca.Function, ca.Function]
 
 
-def _compile_library(
-    n: int, functions: tuple[ca.Function, ca.Function] | None, wait: bool = False
-) -> Path | None:
+def _symbolic_functions(n: int) -> _Functions:
+    """The coupled (with Jacobians), residual-only and panel-loads functions, in that order."""
+    return build_coupled_function(n), build_residual_function(n), build_panel_loads_function(n)
+
+
+def _compile_library(n: int, functions: _Functions | None, wait: bool = False) -> Path | None:
     """Generate and compile the C library for N.
 
     If another process is compiling it, return None at once, or with `wait` block until it has.
@@ -172,7 +189,7 @@ def _compile_library(
     return library
 
 
-def _background_compile(model: CompiledModel, functions: tuple[ca.Function, ca.Function]) -> None:
+def _background_compile(model: CompiledModel, functions: _Functions) -> None:
     try:
         library = _compile_library(model.n, functions)
     except (OSError, subprocess.CalledProcessError) as error:
@@ -196,9 +213,8 @@ def model_for(n: int) -> CompiledModel:
         if model is not None:
             return model
         functions = _symbolic_functions(n)
-        model = CompiledModel(
-            n, Layout(n), _BufferedCall(functions[0]), _BufferedCall(functions[1])
-        )
+        coupled, residual, panel_loads = (_BufferedCall(function) for function in functions)
+        model = CompiledModel(n, Layout(n), coupled, residual, panel_loads)
         library = _library_path(n)
         if library.exists():
             with contextlib.suppress(OSError, RuntimeError):

@@ -171,22 +171,36 @@ def linear_divergence_pressure(wing: Wing) -> float | None:
     return _linear_divergence_cached(_parameter_key(wing))
 
 
-@functools.lru_cache(maxsize=256)
-def _rigid_solution_cached(key: bytes) -> np.ndarray:
-    """Jig state with the circulation of the rigid wing (q = 0 makes the structure rows trivial)."""
+@dataclass(frozen=True)
+class _Jig:
+    """The undeformed wing at one alpha, shared by every airspeed (loads scale with q)."""
+
+    evaluation: Evaluation  # at u = u' = theta = 0 with zero circulation
+    rigid_state: np.ndarray  # (4N-1,) jig geometry with the rigid wing's circulations
+    rigid_lift_per_q: float  # [m^2] rigid lift / q
+
+
+# Each entry holds two dense Jacobians (0.2 MB at N = 30, 3.7 MB at N = 120).
+@functools.lru_cache(maxsize=16)
+def _jig_cached(key: bytes) -> _Jig:
     p = np.frombuffer(key, dtype=float)
     model = model_for((p.size - 1) // 5)
-    jig = np.zeros(model.layout.n_unknowns)
-    evaluation = model.evaluate(jig, p)
-    # The residual is linear in the circulation at fixed geometry: one step is exact.
-    solution = -np.linalg.solve(evaluation.jacobian0, evaluation.r0)
-    solution.setflags(write=False)
-    return solution
+    evaluation = model.evaluate(np.zeros(model.layout.n_unknowns), p)
+    # At q = 0 the structure stays undeformed and the residual is linear in the circulation:
+    # one step from zero circulation is the exact rigid solution.
+    rigid_state = -np.linalg.solve(evaluation.jacobian0, evaluation.r0)
+    rigid_state.setflags(write=False)
+    lift_per_q, _ = _loads(model, rigid_state, p, 1.0).lift_and_drag(float(p[-1]))
+    return _Jig(evaluation, rigid_state, lift_per_q)
+
+
+def _jig(wing: Wing, alpha_deg: float) -> _Jig:
+    return _jig_cached(wing.parameters(alpha_deg).tobytes())
 
 
 def rigid_solution(wing: Wing, alpha_deg: float) -> np.ndarray:
     """(4N-1,) jig state (u = u' = theta = 0) with the rigid wing's circulations."""
-    return _rigid_solution_cached(wing.parameters(alpha_deg).tobytes())
+    return _jig(wing, alpha_deg).rigid_state
 
 
 def _deformed_area(wing: Wing, vertex: np.ndarray) -> float:
@@ -229,9 +243,7 @@ def equilibrium_from_state(
     q = flight.dynamic_pressure
     p = wing.parameters(flight.alpha)
     loads = _loads(model, x, p, q)
-    rigid = _loads(model, rigid_solution(wing, flight.alpha), p, q)
     lift, drag = loads.lift_and_drag(flight.alpha)
-    rigid_lift, _ = rigid.lift_and_drag(flight.alpha)
     lift_force = loads.force[2]
     panel_y = loads.center[1]
     shear = _outboard_sum(lift_force)
@@ -257,7 +269,7 @@ def equilibrium_from_state(
         CDi=drag / (q * reference_area),
         reference_area=reference_area,
         deformed_area=_deformed_area(wing, loads.vertex),
-        rigid_lift=rigid_lift,
+        rigid_lift=q * _jig(wing, flight.alpha).rigid_lift_per_q,
         stability=_stability(wing, flight, evaluation, model),
         iterations=iterations,
         residual_norm=residual_norm,
@@ -273,7 +285,8 @@ def _initial_point(
     """Starting state, its evaluation if already known, and whether it is a warm start."""
     n_unknowns = 4 * wing.n_stations - 1
     if initial_guess is None:
-        return np.array(rigid_solution(wing, flight.alpha)), None, False
+        # From the undeformed, unloaded jig: its cached evaluation makes the first step free.
+        return np.zeros(n_unknowns), _jig(wing, flight.alpha).evaluation, False
     if isinstance(initial_guess, Equilibrium):
         same_problem = (
             initial_guess.wing.parameters(initial_guess.flight.alpha).tobytes()
@@ -310,6 +323,7 @@ def solve(
     x0, evaluation0, warm = _initial_point(wing, flight, initial_guess)
     result = newton(
         lambda x: model.evaluate(x, p),
+        lambda x: model.residual(x, p),
         x0,
         flight.dynamic_pressure,
         options.tolerance,

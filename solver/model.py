@@ -39,12 +39,18 @@ import casadi as ca
 import numpy as np
 
 from solver.geometry import panel_geometry, station_points
-from solver.vlm import source_columns
+from solver.vlm import induced_velocities, source_columns
 
-__all__ = ["Layout", "build_coupled_function", "build_panel_loads_function", "MODEL_VERSION"]
+__all__ = [
+    "Layout",
+    "build_coupled_function",
+    "build_panel_loads_function",
+    "build_residual_function",
+    "MODEL_VERSION",
+]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "1"
+MODEL_VERSION = "3"
 
 DEG_PER_RAD = 180.0 / np.pi
 
@@ -153,8 +159,13 @@ def _aero_loads(n: int, heave, twist, circulation, y, chord, ea, alpha_deg, indu
     return force, torque, points, panels
 
 
-def _aero_function(n: int) -> ca.Function:
-    """Tangency residuals and beam loads given the induced velocities, with partial Jacobians."""
+def _aero_function(n: int, with_jacobians: bool) -> ca.Function:
+    """Tangency residuals and beam loads given the induced velocities.
+
+    Outputs: tangency (M,) [-]; loads (3M,) per unit q: vertical force Fz [m^2], its moment
+    Fz * y_load about the root [m^3], torque about the elastic axis [m^3]. With `with_jacobians`
+    also their partial derivatives w.r.t. z = [u; theta; g] and w.r.t. the induced velocities.
+    """
     m = n - 1
     heave, twist, y, chord, ea = (ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea"))
     circulation = ca.SX.sym("g", m)
@@ -170,18 +181,19 @@ def _aero_function(n: int) -> ca.Function:
     tangency = ca.sum1(v_collocation * panels.normal).T
     lift_force = force[2, :]
     loads = ca.vertcat(lift_force.T, (lift_force * panels.vortex_center[1, :]).T, torque.T)
-    z = ca.vertcat(heave, twist, circulation)
-    return ca.Function(
-        "aero_glue",
-        [heave, twist, circulation, y, chord, ea, alpha_deg, induced_tangency, induced_forces],
-        [
-            tangency,
-            loads,
+    outputs = [tangency, loads]
+    if with_jacobians:
+        z = ca.vertcat(heave, twist, circulation)
+        outputs += [
             ca.jacobian(tangency, z),
             ca.jacobian(tangency, induced_tangency),
             ca.jacobian(loads, z),
             ca.jacobian(loads, induced_forces),
-        ],
+        ]
+    return ca.Function(
+        "aero_glue" if with_jacobians else "aero_glue_values",
+        [heave, twist, circulation, y, chord, ea, alpha_deg, induced_tangency, induced_forces],
+        outputs,
     )
 
 
@@ -197,6 +209,43 @@ def _outboard_sum(panel_rows: ca.MX) -> ca.MX:
         running = running + panel_rows[j, :]
         rows.append(running)
     return ca.vertcat(*reversed(rows))
+
+
+def _beam_load_rows(loads: ca.MX, y: ca.MX, ei: ca.MX, gj: ca.MX) -> ca.MX:
+    """The q-proportional part of the bending and torsion equations, (2(N-1), k).
+
+    `loads` (3M, k) holds per-panel [Fz; Fz y_load; torque] per unit q, or their derivative
+    rows (k = number of unknowns): every operation here is linear, so the same code gives the
+    r1 rows and the J1 rows. Internal loads by outboard sums (study section 14.3):
+    M_i = sum_{j>=i} Fz_j y_j - y_i S_i, T_i = sum_{j>=i} tau_j; then the trapezoidal rule.
+    """
+    m = loads.shape[0] // 3
+    shear = _outboard_sum(loads[:m, :])
+    bending = _outboard_sum(loads[m : 2 * m, :]) - ca.mtimes(ca.diag(y), shear)
+    torsion = _outboard_sum(loads[2 * m :, :])
+    h = y[1:] - y[:-1]
+
+    def trapezoid(integrand: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
+        """-scale h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}), row by row."""
+        inner = ca.diag(-scale * h / (2 * stiffness[:-1]))
+        outer = ca.diag(-scale * h / (2 * stiffness[1:]))
+        return ca.mtimes(inner, integrand[:-1, :]) + ca.mtimes(outer, integrand[1:, :])
+
+    return ca.vertcat(trapezoid(bending, ei, 1.0), trapezoid(torsion, gj, DEG_PER_RAD))
+
+
+def _structure_rows(layout: Layout, x: ca.MX, y: ca.MX) -> ca.MX:
+    """Root clamps, heave kinematics and the load-free part of bending and torsion rows."""
+    heave, slope, twist = x[layout.heave], x[layout.slope], x[layout.twist]
+    h = y[1:] - y[:-1]
+    return ca.vertcat(
+        heave[0],
+        slope[0],
+        twist[0],
+        heave[1:] - heave[:-1] - h * (slope[:-1] + slope[1:]) / 2,
+        slope[1:] - slope[:-1],
+        twist[1:] - twist[:-1],
+    )
 
 
 def _induced_derivative(
@@ -218,102 +267,114 @@ def _induced_derivative(
     return result
 
 
+class _Symbols:
+    """Symbolic unknowns and parameters of one mesh, split into named parts."""
+
+    def __init__(self, n: int) -> None:
+        self.layout = Layout(n)
+        self.m = n - 1
+        self.x = ca.MX.sym("x", self.layout.n_unknowns)
+        self.p = ca.MX.sym("p", self.layout.n_parameters)
+        self.heave = self.x[self.layout.heave]
+        self.twist = self.x[self.layout.twist]
+        self.circulation = self.x[self.layout.circulation]
+        self.y, self.chord, self.ea, self.ei, self.gj, self.alpha_deg = _split_parameters(self.p, n)
+        # The horseshoe of panel k induces nothing of its bound leg at its own vortex centre.
+        self.all_bound_legs = ca.DM.ones(self.m, self.m)
+        self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
+
+    def geometry(self) -> tuple[ca.MX, ...]:
+        """vertex, collocation, center and their derivatives w.r.t. [u; theta]."""
+        geometry = _geometry_function(self.layout.n)
+        return tuple(geometry(self.heave, self.twist, self.y, self.chord, self.ea))  # type: ignore[arg-type]
+
+    def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
+        return _aero_function(self.layout.n, with_jacobians)(
+            self.heave,
+            self.twist,
+            self.circulation,
+            self.y,
+            self.chord,
+            self.ea,
+            self.alpha_deg,
+            induced_tangency,
+            induced_forces,
+        )
+
+    def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
+        """r0 and r1 from the aerodynamic outputs."""
+        m = self.m
+        r0 = ca.vertcat(_structure_rows(self.layout, self.x, self.y), tangency)
+        r1 = ca.vertcat(
+            ca.MX(3 + m, 1), _beam_load_rows(loads, self.y, self.ei, self.gj), ca.MX(m, 1)
+        )
+        return r0, r1
+
+
 def build_coupled_function(n: int) -> ca.Function:
     """(x, p) -> (r0, r1, J0, J1), all dense, for N stations. See the module docstring."""
-    layout = Layout(n)
-    m = layout.n_panels
-    x = ca.MX.sym("x", layout.n_unknowns)
-    p = ca.MX.sym("p", layout.n_parameters)
-    heave, slope, twist, circulation = (
-        x[layout.heave],
-        x[layout.slope],
-        x[layout.twist],
-        x[layout.circulation],
-    )
-    y, chord, ea, ei, gj, alpha_deg = _split_parameters(p, n)
-
-    geometry = _geometry_function(n)
-    vertex, collocation, center, vertex_d, collocation_d, center_d = geometry(
-        heave, twist, y, chord, ea
-    )
+    sym = _Symbols(n)
+    m, nx = sym.m, sym.layout.n_unknowns
+    vertex, collocation, center, vertex_d, collocation_d, center_d = sym.geometry()
     sources = source_columns(m)
-    left, right = vertex[:, :-1], vertex[:, 1:]
-    all_bound_legs = ca.DM.ones(m, m)
-    no_self_bound_leg = ca.DM.ones(m, m) - ca.DM.eye(m)
+    left, right, g_row = vertex[:, :-1], vertex[:, 1:], sym.circulation.T
     ind_t, infl_t, dfield_t, dleft_t, dright_t = sources(
-        collocation, all_bound_legs, left, right, circulation.T
+        collocation, sym.all_bound_legs, left, right, g_row
     )
     ind_f, infl_f, dfield_f, dleft_f, dright_f = sources(
-        center, no_self_bound_leg, left, right, circulation.T
+        center, sym.no_self_bound_leg, left, right, g_row
     )
+    # Induced velocities w.r.t. z = [u; theta; g].
     ind_t_z = ca.horzcat(
         _induced_derivative(dfield_t, dleft_t, dright_t, collocation_d, vertex_d, m), infl_t
     )
     ind_f_z = ca.horzcat(
         _induced_derivative(dfield_f, dleft_f, dright_f, center_d, vertex_d, m), infl_f
     )
-
-    aero = _aero_function(n)
-    tangency, loads, tangency_z, tangency_ind, loads_z, loads_ind = aero(
-        heave, twist, circulation, y, chord, ea, alpha_deg, ind_t, ind_f
-    )
+    tangency, loads, tangency_z, tangency_ind, loads_z, loads_ind = sym.aero(True, ind_t, ind_f)
     tangency_z = tangency_z + ca.mtimes(tangency_ind, ind_t_z)
     loads_z = loads_z + ca.mtimes(loads_ind, ind_f_z)
 
     def z_to_x(rows_z: ca.MX) -> ca.MX:
-        """Columns [u, theta, g] -> [u, u', theta, g] (loads do not depend on the slope)."""
+        """Columns [u, theta, g] -> [u, u', theta, g] (aerodynamics never sees the slope)."""
         return ca.horzcat(rows_z[:, :n], ca.MX(rows_z.shape[0], n), rows_z[:, n:])
 
-    tangency_x = z_to_x(tangency_z)
-    loads_x = z_to_x(loads_z)
-
-    # Beam: internal loads per unit q by outboard sums (study section 14.3).
-    def internal_loads(lift_force, lift_moment_about_root, torque):
-        shear = _outboard_sum(lift_force)
-        bending = _outboard_sum(lift_moment_about_root) - ca.mtimes(ca.diag(y), shear)
-        return bending, _outboard_sum(torque)
-
-    bending, torsion = internal_loads(loads[:m], loads[m : 2 * m], loads[2 * m :])
-    bending_x, torsion_x = internal_loads(
-        loads_x[:m, :], loads_x[m : 2 * m, :], loads_x[2 * m :, :]
-    )
-
-    h = y[1:] - y[:-1]
-
-    def trapezoid(integrand_rows: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
-        """-h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) * scale, row-wise for values or Jacobian rows."""
-        inner = ca.diag(-scale * h / (2 * stiffness[:-1]))
-        outer = ca.diag(-scale * h / (2 * stiffness[1:]))
-        return ca.mtimes(inner, integrand_rows[:-1, :]) + ca.mtimes(outer, integrand_rows[1:, :])
-
-    structure = ca.vertcat(
-        heave[0],
-        slope[0],
-        twist[0],
-        heave[1:] - heave[:-1] - h * (slope[:-1] + slope[1:]) / 2,
-        slope[1:] - slope[:-1],
-        twist[1:] - twist[:-1],
-    )
-    r0 = ca.vertcat(structure, tangency)
-    r1 = ca.vertcat(
-        ca.MX(3 + m, 1),
-        trapezoid(bending, ei, 1.0),
-        trapezoid(torsion, gj, DEG_PER_RAD),
-        ca.MX(m, 1),
-    )
-    j0 = ca.vertcat(ca.jacobian(structure, x), tangency_x)
+    r0, r1 = sym.residual(tangency, loads)
+    structure = _structure_rows(sym.layout, sym.x, sym.y)
+    j0 = ca.vertcat(ca.jacobian(structure, sym.x), z_to_x(tangency_z))
     j1 = ca.vertcat(
-        ca.MX(3 + m, layout.n_unknowns),
-        trapezoid(bending_x, ei, 1.0),
-        trapezoid(torsion_x, gj, DEG_PER_RAD),
-        ca.MX(m, layout.n_unknowns),
+        ca.MX(3 + m, nx),
+        _beam_load_rows(z_to_x(loads_z), sym.y, sym.ei, sym.gj),
+        ca.MX(m, nx),
     )
     return ca.Function(
         f"flexwing_coupled_{n}",
-        [x, p],
+        [sym.x, sym.p],
         [ca.densify(r0), ca.densify(r1), ca.densify(j0), ca.densify(j1)],
         ["x", "p"],
         ["r0", "r1", "J0", "J1"],
+    )
+
+
+def _induced_values(sym: _Symbols, vertex: ca.MX, field: ca.MX, weights: ca.DM) -> ca.MX:
+    induced = induced_velocities(sym.m)
+    return induced(field, weights, vertex[:, :-1], vertex[:, 1:], sym.circulation.T)
+
+
+def build_residual_function(n: int) -> ca.Function:
+    """(x, p) -> (r0, r1): the residual alone, without derivatives (line searches, checks)."""
+    sym = _Symbols(n)
+    vertex, collocation, center, *_ = sym.geometry()
+    ind_t = _induced_values(sym, vertex, collocation, sym.all_bound_legs)
+    ind_f = _induced_values(sym, vertex, center, sym.no_self_bound_leg)
+    tangency, loads = sym.aero(False, ind_t, ind_f)
+    r0, r1 = sym.residual(tangency, loads)
+    return ca.Function(
+        f"flexwing_residual_{n}",
+        [sym.x, sym.p],
+        [ca.densify(r0), ca.densify(r1)],
+        ["x", "p"],
+        ["r0", "r1"],
     )
 
 
@@ -323,28 +384,24 @@ def build_panel_loads_function(n: int) -> ca.Function:
     Outputs: force (3, N-1) [m^2] (times q gives N), torque (1, N-1) [m^3] (times q gives N m),
     vortex_center (3, N-1) [m], vortex_vertex (3, N) [m]; right half-wing, root to tip.
     """
-    layout = Layout(n)
-    m = layout.n_panels
-    x = ca.MX.sym("x", layout.n_unknowns)
-    p = ca.MX.sym("p", layout.n_parameters)
-    heave, twist, circulation = x[layout.heave], x[layout.twist], x[layout.circulation]
-    y, chord, ea, _, _, alpha_deg = _split_parameters(p, n)
-    vertex, _, center, *_ = _geometry_function(n)(heave, twist, y, chord, ea)
-    induced, *_ = source_columns(m)(
-        center, ca.DM.ones(m, m) - ca.DM.eye(m), vertex[:, :-1], vertex[:, 1:], circulation.T
-    )
+    sym = _Symbols(n)
+    vertex, _, center, *_ = sym.geometry()
+    induced = _induced_values(sym, vertex, center, sym.no_self_bound_leg)
     sx_args = [ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea")]
-    g_sx, alpha_sx, induced_sx = ca.SX.sym("g", m), ca.SX.sym("alpha"), ca.SX.sym("ind", 3 * m)
+    g_sx, alpha_sx = ca.SX.sym("g", sym.m), ca.SX.sym("alpha")
+    induced_sx = ca.SX.sym("induced", 3 * sym.m)
     force, torque, _, _ = _aero_loads(
         n, sx_args[0], sx_args[1], g_sx, sx_args[2], sx_args[3], sx_args[4], alpha_sx, induced_sx
     )
     loads = ca.Function(
         "panel_forces", [*sx_args[:2], g_sx, *sx_args[2:], alpha_sx, induced_sx], [force, torque]
     )
-    force_mx, torque_mx = loads(heave, twist, circulation, y, chord, ea, alpha_deg, induced)
+    force_mx, torque_mx = loads(
+        sym.heave, sym.twist, sym.circulation, sym.y, sym.chord, sym.ea, sym.alpha_deg, induced
+    )
     return ca.Function(
         f"flexwing_panel_loads_{n}",
-        [x, p],
+        [sym.x, sym.p],
         [force_mx, torque_mx, center, vertex],
         ["x", "p"],
         ["force", "torque", "vortex_center", "vortex_vertex"],

@@ -25,7 +25,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-__all__ = ["horseshoe_velocity", "pair_kernel", "source_columns"]
+__all__ = ["horseshoe_velocity", "pair_kernel", "source_columns", "induced_velocities"]
 
 _MIRROR = ca.DM([1.0, -1.0, 1.0])
 
@@ -75,18 +75,22 @@ def pair_kernel() -> ca.Function:
     left = ca.SX.sym("left", 3)
     right = ca.SX.sym("right", 3)
     g = ca.SX.sym("g")
-    velocity = horseshoe_velocity(field, left, right, weight) + horseshoe_velocity(
-        field, _MIRROR * right, _MIRROR * left
+    right_half = horseshoe_velocity(field, left, right, weight)
+    left_half = horseshoe_velocity(field, _MIRROR * right, _MIRROR * left)
+    d_left = ca.jacobian(right_half, left) + ca.jacobian(left_half, left)
+    d_right = ca.jacobian(right_half, right) + ca.jacobian(left_half, right)
+    # Each horseshoe depends on its vertices only through field - vertex, so moving the field
+    # point equals moving both vertices the other way; the left half's vertices are mirrored
+    # (m = m^-1). This saves a third of the kernel's work over differentiating w.r.t. the field.
+    mirror = ca.diag(_MIRROR)
+    d_field = -(ca.jacobian(right_half, left) + ca.jacobian(right_half, right)) - ca.mtimes(
+        ca.jacobian(left_half, left) + ca.jacobian(left_half, right), mirror
     )
+    outputs = ca.cse([right_half + left_half, g * d_field.T, g * d_left.T, g * d_right.T])
     return ca.Function(
         "vlm_pair",
         [field, weight, left, right, g],
-        [
-            velocity,
-            g * ca.jacobian(velocity, field).T,
-            g * ca.jacobian(velocity, left).T,
-            g * ca.jacobian(velocity, right).T,
-        ],
+        outputs,
         ["field", "bound_weight", "left", "right", "g"],
         ["velocity", "g_dfield", "g_dleft", "g_dright"],
     )
@@ -143,4 +147,43 @@ def source_columns(n_panels: int) -> ca.Function:
         [induced, influence, g_dfield_sum, g_dleft_all, g_dright_all],
         ["field", "bound_weight", "left", "right", "g"],
         ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def induced_velocities(n_panels: int) -> ca.Function:
+    """Values only: sum_k g_k v_ik at every field point, without derivatives (4x cheaper).
+
+    Inputs as `source_columns`; output induced (3M, 1) [-] per unit V, rows 3 i + c.
+    """
+    m = n_panels
+    field = ca.SX.sym("field", 3)
+    weight = ca.SX.sym("bound_weight")
+    left = ca.SX.sym("left", 3)
+    right = ca.SX.sym("right", 3)
+    g = ca.SX.sym("g")
+    velocity = horseshoe_velocity(field, left, right, weight) + horseshoe_velocity(
+        field, _MIRROR * right, _MIRROR * left
+    )
+    pair = ca.Function("vlm_pair_value", [field, weight, left, right, g], [g * velocity])
+    over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4], [])
+    field_mx = ca.MX.sym("field", 3, m)
+    weight_mx = ca.MX.sym("bound_weight", m, 1)
+    left_mx, right_mx, g_mx = ca.MX.sym("left", 3), ca.MX.sym("right", 3), ca.MX.sym("g")
+    column = ca.Function(
+        "vlm_value_column",
+        [field_mx, weight_mx, left_mx, right_mx, g_mx],
+        [ca.vec(over_fields(field_mx, weight_mx.T, left_mx, right_mx, g_mx))],
+    )
+    over_sources = column.map("vlm_value_over_sources", "serial", m, [0], [0])
+    field_all = ca.MX.sym("field", 3, m)
+    weight_all = ca.MX.sym("bound_weight", m, m)
+    left_all = ca.MX.sym("left", 3, m)
+    right_all = ca.MX.sym("right", 3, m)
+    g_all = ca.MX.sym("g", 1, m)
+    return ca.Function(
+        "vlm_induced",
+        [field_all, weight_all, left_all, right_all, g_all],
+        [over_sources(field_all, weight_all, left_all, right_all, g_all)],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["induced"],
     )
