@@ -58,7 +58,7 @@ import aerosandbox as asb
 import aerosandbox.numpy as np
 import casadi
 
-# AeroSandbox 4.2.10 relies on casadi's legacy numpy interplay; keep it, without casadi 3.8's notice.
+# AeroSandbox 4.2.10 relies on casadi's legacy numpy interplay: keep it, minus casadi 3.8's notice.
 if hasattr(casadi.GlobalOptions, "setNumpyMode"):
     casadi.GlobalOptions.setNumpyMode(-1)
 
