@@ -1,0 +1,147 @@
+"""Request models -> validated solver inputs, or an invalid-input problem naming every bad field.
+
+Pydantic has already checked types, finiteness and signs item by item (`app.schemas`). This step
+adds what needs the settings (most stations, most sweep points) and what `solver.Wing.create` and
+`solver.FlightCondition` check (the root at y = 0, increasing stations, matching lengths).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from app import schemas
+from app.problems import FieldError, Problem
+from app.settings import Settings
+from solver import FlightCondition, InvalidInput, SolverOptions, Wing
+from solver.model import Layout
+
+__all__ = ["SolveInput", "SweepInput", "solve_input", "solver_options", "sweep_input"]
+
+
+@dataclass(frozen=True)
+class SolveInput:
+    wing: Wing
+    flight: FlightCondition
+    options: SolverOptions
+    initial_guess: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class SweepInput:
+    wing: Wing
+    velocities: tuple[float, ...]
+    alpha: float
+    density: float
+    options: SolverOptions
+
+
+_OPTION_NAMES = {f.name for f in dataclasses.fields(SolverOptions)}
+
+
+def solver_options(model: schemas.SolverOptions | None) -> SolverOptions:
+    values = (model or schemas.SolverOptions()).model_dump()
+    return SolverOptions(**{k: v for k, v in values.items() if k in _OPTION_NAMES})
+
+
+def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> Wing | None:
+    n = len(model.y)
+    if n > settings.max_stations:
+        errors.append(
+            FieldError(
+                "wing.y",
+                f"has {n} stations; at most {settings.max_stations} are allowed "
+                "(FLEXWING_MAX_STATIONS)",
+            )
+        )
+        return None
+    try:
+        return Wing.create(
+            model.y,
+            model.chord,
+            model.elastic_axis,
+            model.bending_stiffness,
+            model.torsional_stiffness,
+        )
+    except InvalidInput as error:
+        errors.append(FieldError(f"wing.{error.field}", error.reason))
+        return None
+
+
+def _flight(
+    velocity: float, alpha: float, density: float, errors: list[FieldError]
+) -> FlightCondition | None:
+    try:
+        return FlightCondition(velocity=velocity, alpha=alpha, density=density)
+    except InvalidInput as error:
+        errors.append(FieldError(f"flight.{error.field}", error.reason))
+        return None
+
+
+def _initial_state(
+    guess: schemas.InitialGuess, n: int, errors: list[FieldError]
+) -> np.ndarray | None:
+    """The solver state of a guessed deformation; circulations start at zero (Newton's first
+    step, on the exact Jacobian, sets them)."""
+    layout = Layout(n)
+    state = np.zeros(layout.n_unknowns)
+    for name, values, part in (
+        ("heave", guess.heave, layout.heave),
+        ("slope", guess.slope, layout.slope),
+        ("twist", guess.twist, layout.twist),
+    ):
+        if values is None:
+            continue
+        if len(values) != n:
+            errors.append(
+                FieldError(f"initial_guess.{name}", f"has {len(values)} values but y has {n}")
+            )
+            continue
+        state[part] = values
+    return None if errors else state
+
+
+def solve_input(request: schemas.SolveRequest, settings: Settings) -> SolveInput:
+    errors: list[FieldError] = []
+    wing = _wing(request.wing, settings, errors)
+    f = request.flight
+    flight = _flight(f.velocity, f.alpha, f.density, errors)
+    guess = None
+    if request.initial_guess is not None and wing is not None:
+        guess = _initial_state(request.initial_guess, wing.n_stations, errors)
+    if errors or wing is None or flight is None:
+        raise Problem.invalid(errors)
+    return SolveInput(wing, flight, solver_options(request.options), guess)
+
+
+def _velocities(
+    request: schemas.SweepRequest, settings: Settings, errors: list[FieldError]
+) -> list[float]:
+    v = request.velocities
+    count = len(v) if isinstance(v, list) else v.count
+    if not 1 <= count <= settings.max_sweep_points:
+        errors.append(
+            FieldError(
+                "velocities" if isinstance(v, list) else "velocities.count",
+                f"asks for {count} airspeeds; 1 to {settings.max_sweep_points} are allowed "
+                "(FLEXWING_MAX_SWEEP_POINTS)",
+            )
+        )
+        return []
+    if isinstance(v, list):
+        return v
+    return [v.start] if count == 1 else np.linspace(v.start, v.stop, count).tolist()
+
+
+def sweep_input(request: schemas.SweepRequest, settings: Settings) -> SweepInput:
+    errors: list[FieldError] = []
+    wing = _wing(request.wing, settings, errors)
+    velocities = _velocities(request, settings, errors)
+    f = request.flight
+    # Airspeeds are positive by schema; this checks alpha and density with the solver's rules.
+    _flight(velocities[0] if velocities else 1.0, f.alpha, f.density, errors)
+    if errors or wing is None:
+        raise Problem.invalid(errors)
+    return SweepInput(wing, tuple(velocities), f.alpha, f.density, solver_options(request.options))

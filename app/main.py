@@ -1,0 +1,158 @@
+"""The ASGI application: ``uvicorn app.main:app``.
+
+`create_app` wires settings, metrics, the worker pool and the service together; the pool starts
+(and warms in the background) in the lifespan, so importing this module starts no process and
+`openapi/generate.py` can build the schema without workers.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator, Awaitable, Callable
+from contextlib import asynccontextmanager
+from typing import Any
+
+from fastapi import FastAPI
+from fastapi.openapi.utils import get_openapi
+
+from app import __version__
+from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
+from app.pool import WorkerPool
+from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
+from app.routes import health, solve, sweep
+from app.service import Service
+from app.settings import Settings, get_settings
+
+__all__ = ["app", "create_app"]
+
+DESCRIPTION = """\
+Static aeroelastic equilibrium of flexible wings: a vortex lattice (one chordwise panel per strip)
+coupled to a cantilever beam, solved as one nonlinear system by Newton's method on an exact
+Jacobian (see the design study, chapter 14).
+
+Units are SI, angles in degrees. Errors are RFC 9457 `application/problem+json`; the `type` of
+each problem is a URI under `/problems/`. The examples are the design study's wing.
+"""
+
+
+class BodyLimitMiddleware:
+    """413 for a request body over `limit` bytes, declared or streamed (pure ASGI)."""
+
+    def __init__(self, app: ASGIApp, limit: int) -> None:
+        self.app = app
+        self.limit = limit
+
+    def _too_large(self, size: str) -> Problem:
+        return Problem(
+            "body-too-large",
+            f"the request body has {size} bytes; at most {self.limit} are accepted "
+            "(FLEXWING_MAX_BODY_BYTES)",
+            extensions={"max_body_bytes": self.limit},
+        )
+
+    async def __call__(
+        self,
+        scope: Scope,
+        receive: Callable[[], Awaitable[Message]],
+        send: Callable[[Message], Awaitable[None]],
+    ) -> None:
+        if scope["type"] != "http" or scope["method"] not in ("POST", "PUT", "PATCH"):
+            await self.app(scope, receive, send)
+            return
+        headers = dict(scope.get("headers") or [])
+        declared = headers.get(b"content-length")
+        if declared is not None and declared.isdigit() and int(declared) > self.limit:
+            await problem_response(self._too_large(declared.decode()), scope["path"])(
+                scope, receive, send
+            )
+            return
+        chunks: list[bytes] = []
+        size = 0
+        while True:
+            message = await receive()
+            if message["type"] != "http.request":
+                break  # disconnected
+            chunks.append(message.get("body", b""))
+            size += len(chunks[-1])
+            if size > self.limit:
+                await problem_response(self._too_large(f"more than {self.limit}"), scope["path"])(
+                    scope, receive, send
+                )
+                return
+            if not message.get("more_body", False):
+                break
+        body = b"".join(chunks)
+        replayed = False
+
+        async def replay() -> Message:
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
+
+        await self.app(scope, replay, send)
+
+
+def _openapi(app: FastAPI) -> Callable[[], dict[str, Any]]:
+    """The OpenAPI document, with error responses as application/problem+json."""
+
+    def build() -> dict[str, Any]:
+        if app.openapi_schema is not None:
+            return app.openapi_schema
+        schema = get_openapi(
+            title=app.title,
+            version=app.version,
+            description=app.description,
+            routes=app.routes,
+            tags=[
+                {"name": "equilibrium", "description": "Solve for aeroelastic equilibria."},
+                {"name": "operations", "description": "Liveness and readiness."},
+            ],
+        )
+        for path in schema.get("paths", {}).values():
+            for operation in path.values():
+                for response in operation.get("responses", {}).values():
+                    content = response.get("content", {})
+                    ref = content.get("application/json", {}).get("schema", {}).get("$ref", "")
+                    if ref.endswith("/ProblemDetails"):
+                        content[PROBLEM_MEDIA_TYPE] = content.pop("application/json")
+        app.openapi_schema = schema
+        return schema
+
+    return build
+
+
+def create_app(settings: Settings | None = None) -> FastAPI:
+    settings = settings or get_settings()
+    metrics = Metrics()
+    pool = WorkerPool(settings, metrics)
+    service = Service(settings, pool, metrics)
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        await pool.start()
+        try:
+            yield
+        finally:
+            await pool.close()
+
+    app = FastAPI(
+        title="flexwing",
+        version=__version__,
+        description=DESCRIPTION,
+        lifespan=lifespan,
+    )
+    app.state.settings = settings
+    app.state.metrics = metrics
+    app.state.pool = pool
+    app.state.service = service
+    install_handlers(app)
+    for module in (solve, sweep, health):
+        app.include_router(module.router)
+    app.add_middleware(BodyLimitMiddleware, limit=settings.max_body_bytes)
+    app.add_middleware(MetricsMiddleware, metrics=metrics)
+    app.openapi = _openapi(app)  # type: ignore[method-assign]
+    return app
+
+
+app = create_app()

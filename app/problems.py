@@ -1,0 +1,255 @@
+"""RFC 9457 problem details: every error the service returns is one of the types below.
+
+A problem's `type` is a relative URI, ``/problems/<slug>``, that the service itself serves with a
+description; clients should switch on it (or on the status) rather than parse `detail`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+from pydantic import BaseModel, ConfigDict, Field
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+__all__ = [
+    "PROBLEM_MEDIA_TYPE",
+    "FieldError",
+    "Problem",
+    "ProblemDetails",
+    "ProblemType",
+    "PROBLEM_TYPES",
+    "install_handlers",
+    "problem_response",
+]
+
+PROBLEM_MEDIA_TYPE = "application/problem+json"
+
+
+@dataclass(frozen=True)
+class ProblemType:
+    slug: str
+    title: str
+    status: int
+    description: str
+
+    @property
+    def uri(self) -> str:
+        return f"/problems/{self.slug}"
+
+
+def _types(*types: ProblemType) -> dict[str, ProblemType]:
+    return {t.slug: t for t in types}
+
+
+PROBLEM_TYPES = _types(
+    ProblemType(
+        "invalid-input",
+        "Invalid input",
+        422,
+        "The request does not describe a valid wing, flight condition or option. `errors` lists "
+        "each bad field (a dotted path with list indices) and why.",
+    ),
+    ProblemType(
+        "no-equilibrium",
+        "No static equilibrium",
+        422,
+        "The wing has no static aeroelastic equilibrium at this airspeed on the branch from the "
+        "jig shape: it lies beyond the fold (torsional divergence). `fold_velocity` [m/s] says "
+        "where the branch ends, when it could be located.",
+    ),
+    ProblemType(
+        "not-converged",
+        "Solver did not converge",
+        422,
+        "Newton's method stopped without meeting the tolerance (`iterations`, `residual_norm`, "
+        "`reason`). Try an initial guess, more iterations, or a lower airspeed.",
+    ),
+    ProblemType(
+        "body-too-large",
+        "Request body too large",
+        413,
+        "The request body exceeds the limit (`max_body_bytes`, setting FLEXWING_MAX_BODY_BYTES).",
+    ),
+    ProblemType(
+        "overloaded",
+        "Service overloaded",
+        503,
+        "Too many solves are running or waiting (FLEXWING_MAX_PENDING). Retry after the "
+        "Retry-After header's seconds.",
+    ),
+    ProblemType(
+        "worker-lost",
+        "Worker process lost",
+        503,
+        "The worker process running this request died (killed or out of memory). It has been "
+        "replaced; the request may be retried.",
+    ),
+    ProblemType(
+        "not-ready",
+        "Service not ready",
+        503,
+        "The worker pool is still starting (compiling or loading solver code).",
+    ),
+    ProblemType(
+        "solve-timeout",
+        "Solve exceeded its time budget",
+        504,
+        "The solve ran longer than its budget (FLEXWING_SOLVE_TIMEOUT or FLEXWING_SWEEP_TIMEOUT, "
+        "`timeout` [s]); its worker was recycled.",
+    ),
+    ProblemType("not-found", "Not found", 404, "No such resource."),
+    ProblemType("method-not-allowed", "Method not allowed", 405, "Use another HTTP method."),
+    ProblemType(
+        "http-error", "HTTP error", 400, "A protocol-level error; see `status` and `detail`."
+    ),
+    ProblemType(
+        "internal-error",
+        "Internal error",
+        500,
+        "A bug in the service. Solve failures never end here: they have their own types.",
+    ),
+)
+
+
+@dataclass(frozen=True)
+class FieldError:
+    """One bad input: `field` is a dotted path (``wing.chord[3]``), `reason` says what is wrong."""
+
+    field: str
+    reason: str
+
+
+class Problem(Exception):
+    """Raise to answer with a problem+json response of the given type."""
+
+    def __init__(
+        self,
+        slug: str,
+        detail: str,
+        *,
+        extensions: Mapping[str, Any] | None = None,
+        headers: Mapping[str, str] | None = None,
+        status: int | None = None,
+    ) -> None:
+        super().__init__(detail)
+        self.type = PROBLEM_TYPES[slug]
+        self.detail = detail
+        self.extensions = dict(extensions or {})
+        self.headers = dict(headers or {})
+        self.status = status or self.type.status
+
+    @classmethod
+    def invalid(cls, errors: Sequence[FieldError]) -> Problem:
+        fields = ", ".join(sorted({e.field for e in errors}))
+        return cls(
+            "invalid-input",
+            f"{len(errors)} invalid field(s): {fields}",
+            extensions={"errors": [{"field": e.field, "reason": e.reason} for e in errors]},
+        )
+
+
+class ProblemFieldError(BaseModel):
+    field: str = Field(description="Dotted path of the bad input, e.g. `wing.chord[3]`.")
+    reason: str = Field(description="What is wrong with it.")
+
+
+class ProblemDetails(BaseModel):
+    """An RFC 9457 problem detail; extension members depend on `type`."""
+
+    model_config = ConfigDict(extra="allow")
+
+    type: str = Field(description="URI reference of the problem type, e.g. /problems/invalid-input")
+    title: str = Field(description="Short summary of the problem type.")
+    status: int = Field(description="HTTP status code.")
+    detail: str = Field(description="What happened in this occurrence.")
+    instance: str | None = Field(default=None, description="The request path.")
+    errors: list[ProblemFieldError] | None = Field(
+        default=None, description="invalid-input: each bad field and why."
+    )
+    fold_velocity: float | None = Field(
+        default=None, description="no-equilibrium: [m/s] where the equilibrium branch ends."
+    )
+
+
+def problem_response(
+    problem: Problem, instance: str | None = None, *, status: int | None = None
+) -> JSONResponse:
+    body: dict[str, Any] = {
+        "type": problem.type.uri,
+        "title": problem.type.title,
+        "status": status or problem.status,
+        "detail": problem.detail,
+    }
+    if instance is not None:
+        body["instance"] = instance
+    body.update(problem.extensions)
+    return JSONResponse(
+        body,
+        status_code=status or problem.status,
+        media_type=PROBLEM_MEDIA_TYPE,
+        headers=problem.headers or None,
+    )
+
+
+def _location(loc: Iterable[int | str]) -> str:
+    """("body", "wing", "chord", 3) -> "wing.chord[3]"."""
+    path = ""
+    for part in loc:
+        if isinstance(part, int):
+            path += f"[{part}]"
+        else:
+            path += f".{part}" if path else str(part)
+    return path
+
+
+def validation_errors(raw: Sequence[Any]) -> list[FieldError]:
+    """FastAPI/pydantic errors as field errors; `body.` is dropped from the paths."""
+    errors: list[FieldError] = []
+    for error in raw:
+        loc = list(error.get("loc", ()))
+        if loc and loc[0] == "body":
+            loc = loc[1:]
+        kind = error.get("type", "")
+        # Drop the tags of the number-or-list unions (schemas: "@number", "@list", "@range").
+        loc = [p for p in loc if not (isinstance(p, str) and p.startswith("@"))]
+        field = _location(loc) or "body"
+        reason = str(error.get("msg", "invalid"))
+        if kind == "json_invalid":
+            field = "body"
+            reason = f"invalid JSON: {error.get('ctx', {}).get('error', reason)}"
+        errors.append(FieldError(field, reason))
+    return errors
+
+
+def install_handlers(app: FastAPI) -> None:
+    """Map every exception the app can see to a problem+json response."""
+
+    async def on_problem(request: Request, exc: Exception) -> JSONResponse:
+        assert isinstance(exc, Problem)
+        return problem_response(exc, request.url.path)
+
+    async def on_validation(request: Request, exc: Exception) -> JSONResponse:
+        assert isinstance(exc, RequestValidationError)
+        return problem_response(Problem.invalid(validation_errors(exc.errors())), request.url.path)
+
+    async def on_http(request: Request, exc: Exception) -> JSONResponse:
+        assert isinstance(exc, StarletteHTTPException)
+        slug = {404: "not-found", 405: "method-not-allowed", 413: "body-too-large"}.get(
+            exc.status_code, "http-error"
+        )
+        problem = Problem(slug, str(exc.detail), headers=exc.headers)
+        return problem_response(problem, request.url.path, status=exc.status_code)
+
+    async def on_error(request: Request, exc: Exception) -> JSONResponse:
+        problem = Problem("internal-error", f"unexpected {type(exc).__name__}")
+        return problem_response(problem, request.url.path)
+
+    app.add_exception_handler(Problem, on_problem)
+    app.add_exception_handler(RequestValidationError, on_validation)
+    app.add_exception_handler(StarletteHTTPException, on_http)
+    app.add_exception_handler(Exception, on_error)

@@ -1,0 +1,62 @@
+"""Liveness, readiness, metrics and problem-type descriptions."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter, Request
+from fastapi.responses import JSONResponse, Response
+from prometheus_client import CONTENT_TYPE_LATEST, generate_latest
+
+from app.problems import PROBLEM_TYPES, Problem
+from app.schemas import HealthResponse, ReadyResponse
+
+__all__ = ["router"]
+
+router = APIRouter(tags=["operations"])
+
+
+@router.get("/healthz", operation_id="healthz", response_model=HealthResponse)
+async def healthz() -> Any:
+    """The process is alive and its event loop answers."""
+    return {"status": "ok"}
+
+
+@router.get(
+    "/readyz",
+    operation_id="readyz",
+    response_model=ReadyResponse,
+    responses={503: {"model": ReadyResponse, "description": "Workers are not warm yet."}},
+)
+async def readyz(request: Request) -> Any:
+    """Ready once every worker has compiled or loaded the solver for the warm mesh sizes."""
+    pool = request.app.state.pool
+    body = ReadyResponse(
+        ready=pool.ready,
+        workers=pool.settings.workers,
+        pids=pool.pids(),
+        warm_stations=list(pool.warm_stations),
+        detail=pool.detail,
+    )
+    return JSONResponse(body.model_dump(), status_code=200 if pool.ready else 503)
+
+
+@router.get("/metrics", include_in_schema=False)
+async def metrics(request: Request) -> Response:
+    return Response(
+        generate_latest(request.app.state.metrics.registry), media_type=CONTENT_TYPE_LATEST
+    )
+
+
+@router.get("/problems/{slug}", include_in_schema=False)
+async def problem_type(slug: str) -> Any:
+    """The description of a problem type (the target of a problem's `type` URI)."""
+    kind = PROBLEM_TYPES.get(slug)
+    if kind is None:
+        raise Problem("not-found", f"no problem type {slug!r}")
+    return {
+        "type": kind.uri,
+        "title": kind.title,
+        "status": kind.status,
+        "description": kind.description,
+    }

@@ -1,0 +1,28 @@
+"""OpenAPI descriptions of the error responses the routes can return (all problem+json)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from app.problems import ProblemDetails
+
+__all__ = ["SOLVE_ERRORS"]
+
+
+def _problem(description: str) -> dict[str, Any]:
+    return {"model": ProblemDetails, "description": description}
+
+
+SOLVE_ERRORS: dict[int | str, dict[str, Any]] = {
+    413: _problem("Request body too large (/problems/body-too-large)."),
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field), no equilibrium "
+        "(/problems/no-equilibrium, with `fold_velocity`) or no convergence "
+        "(/problems/not-converged)."
+    ),
+    503: _problem(
+        "Overloaded, not ready, or the worker died (/problems/overloaded, /problems/not-ready, "
+        "/problems/worker-lost); see Retry-After."
+    ),
+    504: _problem("The solve exceeded its time budget (/problems/solve-timeout)."),
+}

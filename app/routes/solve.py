@@ -1,0 +1,32 @@
+"""POST /solve: one static aeroelastic equilibrium."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter, Request
+
+from app.routes.responses import SOLVE_ERRORS
+from app.schemas import SolveRequest, SolveResponse
+
+__all__ = ["router"]
+
+router = APIRouter(tags=["equilibrium"])
+
+
+@router.post(
+    "/solve",
+    operation_id="solve",
+    response_model=SolveResponse,
+    responses=SOLVE_ERRORS,
+    summary="Static aeroelastic equilibrium of a wing at one flight condition",
+)
+async def solve(body: SolveRequest, request: Request) -> Any:
+    """Deformation, loads, totals and stability of the wing's equilibrium.
+
+    Newton starts from the stored equilibrium of the same wing nearest in dynamic pressure and
+    alpha (`solver.warm_start`); a repeated request is answered from the result cache
+    (`solver.cached`). Past torsional divergence there is no equilibrium: 422
+    `/problems/no-equilibrium` with the fold speed.
+    """
+    return await request.app.state.service.solve(body)

@@ -1,0 +1,32 @@
+"""POST /sweep: equilibria over airspeeds and the divergence estimates."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter, Request
+
+from app.routes.responses import SOLVE_ERRORS
+from app.schemas import SweepRequest, SweepResponse
+
+__all__ = ["router"]
+
+router = APIRouter(tags=["equilibrium"])
+
+
+@router.post(
+    "/sweep",
+    operation_id="sweep",
+    response_model=SweepResponse,
+    responses=SOLVE_ERRORS,
+    summary="Equilibria of a wing over airspeeds, and its torsional divergence",
+)
+async def sweep(body: SweepRequest, request: Request) -> Any:
+    """Solves the airspeeds in the given order, each from the previous equilibrium.
+
+    A point without equilibrium (beyond the fold) is reported in place with the reason; the
+    response still succeeds. `divergence` holds three estimates: linear (eigenvalue at the
+    unloaded jig), fit (the study's 1/A against q extrapolation) and fold (where the branch
+    ends), each null with a reason when it does not exist.
+    """
+    return await request.app.state.service.sweep(body)

@@ -1,0 +1,149 @@
+"""Between the routes and the pool: caches, warm starts, and failures as problems.
+
+request model -> `app.inputs` -> cache lookup -> `app.pool` runs `app.worker` -> caches
+-> response dict (validated against the response model by FastAPI)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+from app import worker
+from app.cache import ResultCache, StateCache, fingerprint
+from app.inputs import solve_input, sweep_input
+from app.metrics import Metrics
+from app.pool import NotReady, Overloaded, PoolError, SolveTimeout, WorkerLost, WorkerPool
+from app.problems import Problem
+from app.schemas import SolveRequest, SweepRequest
+from app.settings import Settings
+
+__all__ = ["Service"]
+
+T = TypeVar("T")
+Payload = dict[str, Any]
+
+
+def _failure_problem(failure: worker.Failure) -> Problem:
+    if failure.kind == "no_equilibrium":
+        return Problem(
+            "no-equilibrium",
+            failure.message,
+            extensions={"velocity": failure.velocity, "fold_velocity": failure.fold_velocity},
+        )
+    return Problem(
+        "not-converged",
+        failure.message,
+        extensions={
+            "velocity": failure.velocity,
+            "iterations": failure.iterations,
+            "residual_norm": failure.residual_norm,
+            "reason": failure.reason,
+        },
+    )
+
+
+def _cached(payload: Payload) -> Payload:
+    return payload | {"solver": payload["solver"] | {"cached": True, "seconds": 0.0}}
+
+
+class Service:
+    def __init__(self, settings: Settings, pool: WorkerPool, metrics: Metrics) -> None:
+        self.settings = settings
+        self.pool = pool
+        self.metrics = metrics
+        self.results: ResultCache[Payload | worker.Failure] = ResultCache(
+            settings.result_cache_size
+        )
+        self.states = StateCache(settings.state_cache_wings, settings.state_cache_per_wing)
+
+    async def _run(self, fn: Callable[[Any], T], job: Any, timeout: float, kind: str) -> T:
+        """Run a job in the pool; pool failures become 503/504 problems."""
+        started = time.perf_counter()
+        retry_after = {"Retry-After": str(self.settings.retry_after)}
+        try:
+            result = await self.pool.run(fn, job, timeout=timeout, kind=kind)
+        except Overloaded as error:
+            raise Problem("overloaded", str(error), headers=retry_after) from None
+        except NotReady as error:
+            raise Problem("not-ready", str(error), headers=retry_after) from None
+        except WorkerLost as error:
+            raise Problem("worker-lost", str(error), headers=retry_after) from None
+        except SolveTimeout as error:
+            budget = {"timeout": error.timeout}
+            raise Problem("solve-timeout", str(error), extensions=budget) from None
+        except PoolError as error:  # pragma: no cover - every subclass is handled above
+            raise Problem("worker-lost", str(error), headers=retry_after) from None
+        self.metrics.solve_seconds.labels(kind).observe(time.perf_counter() - started)
+        return result
+
+    def _lookup(self, key: tuple[Any, ...]) -> Payload | worker.Failure | None:
+        hit = self.results.get(key)
+        self.metrics.cache.labels("result", "miss" if hit is None else "hit").inc()
+        return hit
+
+    async def solve(self, request: SolveRequest) -> Payload:
+        inputs = solve_input(request, self.settings)
+        wing_id = fingerprint(inputs.wing)
+        flight = inputs.flight
+        # A supplied initial guess may select another branch: such requests bypass the cache.
+        key = None
+        if inputs.initial_guess is None:
+            key = (
+                "solve",
+                wing_id,
+                flight.velocity,
+                flight.alpha,
+                flight.density,
+                dataclasses.astuple(inputs.options),
+            )
+            hit = self._lookup(key)
+            if isinstance(hit, worker.Failure):
+                raise _failure_problem(hit)
+            if hit is not None:
+                return _cached(hit)
+        guess, hint = inputs.initial_guess, False
+        if guess is None:
+            stored = self.states.nearest(wing_id, flight.dynamic_pressure, flight.alpha)
+            self.metrics.cache.labels("warm_start", "miss" if stored is None else "hit").inc()
+            guess, hint = (None, False) if stored is None else (stored.state, True)
+        job = worker.SolveJob(inputs.wing, flight, inputs.options, guess, hint)
+        outcome = await self._run(worker.run_solve, job, self.settings.solve_timeout, "solve")
+        if outcome.failure is not None:
+            self.metrics.solves.labels("solve", outcome.failure.kind).inc()
+            if key is not None:
+                self.results.put(key, outcome.failure)
+            raise _failure_problem(outcome.failure)
+        assert outcome.payload is not None
+        self.metrics.solves.labels("solve", "equilibrium").inc()
+        if outcome.stable and outcome.state is not None:
+            self.states.add(wing_id, flight.dynamic_pressure, flight.alpha, outcome.state)
+        if key is not None:
+            self.results.put(key, outcome.payload)
+        return outcome.payload
+
+    async def sweep(self, request: SweepRequest) -> Payload:
+        inputs = sweep_input(request, self.settings)
+        wing_id = fingerprint(inputs.wing)
+        key = (
+            "sweep",
+            wing_id,
+            inputs.velocities,
+            inputs.alpha,
+            inputs.density,
+            dataclasses.astuple(inputs.options),
+        )
+        hit = self._lookup(key)
+        if isinstance(hit, dict):
+            return _cached(hit)
+        job = worker.SweepJob(
+            inputs.wing, inputs.velocities, inputs.alpha, inputs.density, inputs.options
+        )
+        outcome = await self._run(worker.run_sweep, job, self.settings.sweep_timeout, "sweep")
+        self.metrics.solves.labels("sweep", "completed").inc()
+        for dynamic_pressure, state in outcome.states:
+            self.states.add(wing_id, dynamic_pressure, inputs.alpha, state)
+        self.results.put(key, outcome.payload)
+        return outcome.payload

@@ -1,0 +1,86 @@
+"""Service settings, read from environment variables prefixed with ``FLEXWING_``.
+
+Every field below is documented with its unit; the README's settings table mirrors them. The
+solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING_CC``) are read by
+`solver.compiled` directly and are not repeated here.
+"""
+
+from __future__ import annotations
+
+import os
+from functools import lru_cache
+
+from pydantic import Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+__all__ = ["Settings", "get_settings"]
+
+
+def _cpu_count() -> int:
+    return os.cpu_count() or 1
+
+
+class Settings(BaseSettings):
+    model_config = SettingsConfigDict(env_prefix="FLEXWING_", extra="ignore")
+
+    workers: int = Field(
+        default_factory=_cpu_count,
+        ge=1,
+        description="Worker processes that run solves (default: the CPU count).",
+    )
+    executor: str = Field(
+        default="process",
+        description=(
+            "'process' for the local process pool, or 'module:callable' naming a factory that "
+            "takes the Settings and returns a concurrent.futures.Executor (e.g. a Dask "
+            "Client(...).get_executor())."
+        ),
+    )
+    start_method: str = Field(
+        default="forkserver",
+        description="multiprocessing start method of the local pool: forkserver or spawn.",
+    )
+    warm_stations: list[int] = Field(
+        default=[30],
+        description="Mesh sizes N each worker compiles or loads before the service is ready.",
+    )
+    warmup_timeout: float = Field(
+        default=600.0, gt=0, description="[s] longest wait for one mesh size to compile."
+    )
+    solve_timeout: float = Field(
+        default=20.0, gt=0, description="[s] time budget of one /solve in a worker."
+    )
+    sweep_timeout: float = Field(
+        default=120.0, gt=0, description="[s] time budget of one /sweep in a worker."
+    )
+    max_pending: int = Field(
+        default=64,
+        ge=1,
+        description="Solves running or waiting for a worker; beyond it requests get 503.",
+    )
+    retry_on_worker_loss: bool = Field(
+        default=True,
+        description="Run a request once more when its worker died under it (else 503 at once).",
+    )
+    max_stations: int = Field(default=150, ge=3, description="Largest mesh size N accepted.")
+    max_sweep_points: int = Field(default=50, ge=1, description="Most velocities in one /sweep.")
+    max_body_bytes: int = Field(
+        default=1_000_000, ge=1024, description="[bytes] largest request body accepted."
+    )
+    result_cache_size: int = Field(
+        default=1024, ge=0, description="Responses kept for repeated requests (0: none)."
+    )
+    state_cache_wings: int = Field(
+        default=256, ge=0, description="Wings whose recent equilibria are kept for warm starts."
+    )
+    state_cache_per_wing: int = Field(
+        default=32, ge=1, description="Equilibria kept per wing for warm starts."
+    )
+    retry_after: int = Field(
+        default=1, ge=0, description="[s] Retry-After sent with 503 responses."
+    )
+
+
+@lru_cache(maxsize=1)
+def get_settings() -> Settings:
+    return Settings()

@@ -1,0 +1,131 @@
+"""Real servers for the integration tests: uvicorn subprocesses on free loopback ports.
+
+`server`: the default configuration with a pool of 2 workers (compiling N = 30 into the default
+disk cache, FLEXWING_CACHE_DIR, if it is not there yet).
+`fault_server`: 2 workers on CasADi's virtual machine (no compilation, a private cache dir), with
+short limits, for the tests that kill workers, overrun budgets and overload the pool.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import httpx
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+# The first start on a machine compiles N = 30 (about 15 s per process on this 2-core machine).
+_READY_TIMEOUT = 300.0
+
+
+@dataclass
+class Server:
+    base_url: str
+    process: subprocess.Popen[bytes]
+    log: Path
+
+    def client(self, timeout: float = 60.0) -> httpx.Client:
+        return httpx.Client(base_url=self.base_url, timeout=timeout)
+
+    def pids(self) -> list[int]:
+        return list(httpx.get(self.base_url + "/readyz", timeout=10).json()["pids"])
+
+    def wait_ready(self, exclude_pids: frozenset[int] = frozenset()) -> list[int]:
+        """Wait until ready with a full pool, none of whose pids is in `exclude_pids`."""
+        deadline = time.monotonic() + _READY_TIMEOUT
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                raise RuntimeError(f"server exited:\n{self.log.read_text()}")
+            try:
+                response = httpx.get(self.base_url + "/readyz", timeout=5)
+                body = response.json()
+                if (
+                    response.status_code == 200
+                    and len(body["pids"]) == body["workers"]
+                    and not exclude_pids & set(body["pids"])
+                ):
+                    return list(body["pids"])
+            except httpx.TransportError:
+                pass
+            time.sleep(0.05)
+        raise TimeoutError(f"server not ready:\n{self.log.read_text()}")
+
+    def metric(self, name: str, **labels: str) -> float:
+        """The value of one sample of /metrics (0 if absent)."""
+        text = httpx.get(self.base_url + "/metrics", timeout=10).text
+        wanted = ",".join(f'{k}="{v}"' for k, v in sorted(labels.items()))
+        for line in text.splitlines():
+            if line.startswith("#"):
+                continue
+            series, _, value = line.rpartition(" ")
+            metric, _, rest = series.partition("{")
+            found = ",".join(sorted(rest.rstrip("}").split(","))) if rest else ""
+            if metric == name and found == wanted:
+                return float(value)
+        return 0.0
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _start(tmp: Path, name: str, env: dict[str, str]) -> Iterator[Server]:
+    port = _free_port()
+    log = tmp / f"{name}.log"
+    full_env = os.environ | {"FLEXWING_WORKERS": "2", "PYTHONUNBUFFERED": "1"} | env
+    with open(log, "wb") as out:
+        process = subprocess.Popen(
+            [
+                *(sys.executable, "-m", "uvicorn", "app.main:app"),
+                *("--host", "127.0.0.1", "--port", str(port), "--log-level", "warning"),
+            ],
+            cwd=ROOT,
+            env=full_env,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+        )
+    server = Server(f"http://127.0.0.1:{port}", process, log)
+    try:
+        server.wait_ready()
+        yield server
+    finally:
+        process.send_signal(signal.SIGINT)
+        try:
+            process.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+
+@pytest.fixture(scope="session")
+def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
+    yield from _start(tmp_path_factory.mktemp("server"), "server", {})
+
+
+@pytest.fixture(scope="session")
+def fault_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
+    tmp = tmp_path_factory.mktemp("fault")
+    env = {
+        "FLEXWING_COMPILE": "0",
+        "FLEXWING_CACHE_DIR": str(tmp / "cache"),
+        "FLEXWING_SOLVE_TIMEOUT": "60",
+        "FLEXWING_SWEEP_TIMEOUT": "0.5",
+        "FLEXWING_MAX_PENDING": "3",
+    }
+    yield from _start(tmp, "fault_server", env)
+
+
+@pytest.fixture
+def client(server: Server) -> Iterator[httpx.Client]:
+    with server.client() as c:
+        yield c

@@ -1,0 +1,141 @@
+"""POST /solve against a live server: the study's numbers, caches, warm starts, the fold."""
+
+from __future__ import annotations
+
+import json
+
+import httpx
+import numpy as np
+import pytest
+
+from tests.app import study
+from tests.app.conftest import ROOT
+
+
+def _solve(client: httpx.Client, body: dict) -> dict:
+    response = client.post("/solve", json=body)
+    assert response.status_code == 200, response.text
+    return response.json()
+
+
+def test_study_wing_at_cruise_matches_the_study(client: httpx.Client) -> None:
+    result = _solve(client, study.solve_request(10.0))
+    totals = result["totals"]
+    # The study prints: lift 304.1 N flexible vs 259.4 N rigid (+17.3 %), tip twist +1.71 deg,
+    # tip heave 0.050 m; each to its printed precision (half a unit of the last digit).
+    assert totals["lift"] == pytest.approx(304.1, abs=0.05)
+    assert totals["rigid_lift"] == pytest.approx(259.4, abs=0.05)
+    assert totals["lift_amplification"] == pytest.approx(1.173, abs=0.0005)
+    assert totals["tip_twist"] == pytest.approx(1.71, abs=0.005)
+    assert totals["tip_heave"] == pytest.approx(0.050, abs=0.0005)
+    assert result["stability"]["stable"] is True
+    # Linear divergence of the study's wing: 359.3 Pa, 24.22 m/s (shared/notes).
+    assert result["stability"]["divergence_dynamic_pressure"] == pytest.approx(359.3, abs=0.05)
+    assert result["stability"]["divergence_velocity"] == pytest.approx(24.22, abs=0.005)
+    assert len(result["stations"]["twist"]) == 30
+    assert len(result["panels"]["lift"]) == 29
+    # Internal loads are outboard sums of the panel loads: the root shear is the half-wing lift.
+    assert result["stations"]["shear"][0] == pytest.approx(sum(result["panels"]["lift"]))
+
+
+@pytest.mark.skipif(not study.REFERENCE.exists(), reason="shared/reference is not beside the repo")
+def test_study_wing_matches_aerosandbox_through_http(client: httpx.Client) -> None:
+    """Every field AeroSandbox reports, to 1e-6 relative: the solver agrees with it to ~4e-9
+    (IPOPT's stopping tolerance), and JSON carries floats exactly."""
+    for velocity, ref in study.reference().items():
+        result = _solve(client, study.solve_request(velocity))
+        stations = result["stations"]
+        for ours, theirs in (
+            (stations["heave"], ref["u"]),
+            (stations["twist"], ref["theta_deg"]),
+            (stations["bending_moment"], ref["M"]),
+            (stations["torque"], ref["T"]),
+            (result["panels"]["lift"], ref["Fz"]),
+        ):
+            scale = np.max(np.abs(theirs))
+            np.testing.assert_allclose(ours, theirs, rtol=0, atol=1e-6 * scale)
+        assert result["totals"]["lift"] == pytest.approx(ref["L"], rel=1e-6)
+        assert result["totals"]["CL_deformed_area"] == pytest.approx(ref["CL"], rel=1e-6)
+
+
+def test_schema_example_runs_as_is(client: httpx.Client) -> None:
+    """/docs sends the schema's example: the study's wing at 10 m/s (density 1.225)."""
+    schema = json.loads((ROOT / "openapi" / "openapi.json").read_text())
+    example = schema["components"]["schemas"]["SolveRequest"]["examples"][0]
+    result = _solve(client, example)
+    # Inputs are rounded to 10 digits and the density is 1.225, not 1.2249992: 304.1 N holds.
+    assert result["totals"]["lift"] == pytest.approx(304.1, abs=0.05)
+
+
+def test_repeated_request_is_answered_from_the_cache(client: httpx.Client) -> None:
+    body = study.solve_request(13.25)
+    first = _solve(client, body)
+    second = _solve(client, body)
+    assert first["solver"]["cached"] is False
+    assert second["solver"]["cached"] is True
+    assert second["totals"] == first["totals"]
+    assert second["stations"] == first["stations"]
+
+
+def test_warm_start_cuts_iterations_on_a_repeated_wing(client: httpx.Client) -> None:
+    # Two wings that differ by 1e-12 in stiffness: the same physics, different fingerprints.
+    cold_wing = study.wing(stiffness_scale=1 + 1e-12)
+    warm_wing = study.wing(stiffness_scale=1 - 1e-12)
+    flight = {"alpha": 5.0, "density": study.DENSITY}
+    cold = _solve(client, {"wing": cold_wing, "flight": flight | {"velocity": 20.5}})
+    _solve(client, {"wing": warm_wing, "flight": flight | {"velocity": 20.0}})
+    warm = _solve(client, {"wing": warm_wing, "flight": flight | {"velocity": 20.5}})
+    assert cold["solver"]["warm_start"] is False
+    assert warm["solver"]["warm_start"] is True
+    assert warm["solver"]["iterations"] < cold["solver"]["iterations"]
+    assert warm["totals"]["lift"] == pytest.approx(cold["totals"]["lift"], rel=1e-9)
+
+
+def test_a_warm_start_does_not_change_the_answer_past_the_fold(client: httpx.Client) -> None:
+    """From a stored 21 m/s state Newton can land on the unstable nose-down branch at 22 m/s;
+    the service must still say what a cold solve says: no equilibrium."""
+    wing = study.wing(stiffness_scale=1 + 2e-12)
+    flight = {"alpha": 5.0, "density": study.DENSITY}
+    _solve(client, {"wing": wing, "flight": flight | {"velocity": 21.0}})
+    response = client.post("/solve", json={"wing": wing, "flight": flight | {"velocity": 22.0}})
+    assert response.status_code == 422
+    assert response.json()["type"] == "/problems/no-equilibrium"
+
+
+def test_beyond_the_fold_is_a_no_equilibrium_problem(client: httpx.Client) -> None:
+    response = client.post("/solve", json=study.solve_request(23.0))
+    assert response.status_code == 422
+    assert response.headers["content-type"] == "application/problem+json"
+    problem = response.json()
+    assert problem["type"] == "/problems/no-equilibrium"
+    assert problem["velocity"] == 23.0
+    # AeroSandbox converges at 21.43 m/s and finds no solution at 21.45 (shared/notes).
+    assert 21.43 < problem["fold_velocity"] < 21.45
+
+
+def test_fold_on_request(client: httpx.Client) -> None:
+    result = _solve(client, study.solve_request(10.0, options={"find_fold": True}))
+    assert 21.43 < result["fold"]["velocity"] < 21.45
+    # Past the fold's twist the branch turns back: the fold carries more twist than 21 m/s (18.2).
+    assert result["fold"]["tip_twist"] > 18.2
+    plain = _solve(client, study.solve_request(10.0))
+    assert plain["fold"] is None
+
+
+def test_initial_guess_from_an_earlier_response(client: httpx.Client) -> None:
+    earlier = _solve(client, study.solve_request(15.0))
+    guess = {k: earlier["stations"][k] for k in ("heave", "slope", "twist")}
+    result = _solve(client, study.solve_request(15.0, initial_guess=guess))
+    assert result["solver"]["warm_start"] is True
+    assert result["solver"]["cached"] is False
+    assert result["totals"]["tip_twist"] == pytest.approx(earlier["totals"]["tip_twist"], rel=1e-9)
+
+
+def test_zero_alpha_carries_no_lift(client: httpx.Client) -> None:
+    """An uncambered jig at alpha = 0 carries nothing: the amplification L/L_rigid is undefined
+    and reported as null, not as NaN (which JSON cannot carry)."""
+    result = _solve(client, study.solve_request(10.0, alpha=0.0))
+    # Newton stops at a residual of 1e-10: the lift is zero to ~1e-8 N (cruise: 304 N).
+    assert result["totals"]["lift"] == pytest.approx(0.0, abs=1e-6)
+    assert result["totals"]["rigid_lift"] == 0.0
+    assert result["totals"]["lift_amplification"] is None
