@@ -56,7 +56,7 @@ class ContinuationSettings:
     tolerance: float = 1e-10
     initial_step: float = 0.1
     min_step: float = 1e-6
-    max_step: float = 0.5
+    max_step: float = 2.0
     max_corrector_iterations: int = 6
     target_correction: float = 0.05
     max_turn: float = 0.35

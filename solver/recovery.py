@@ -83,6 +83,7 @@ def _from_branch(
     p = wing.parameters(flight.alpha)
     result = newton(
         lambda x: model.evaluate(x, p),
+        lambda x: model.residual(x, p),
         branch.start_for(q),
         q,
         options.tolerance,
