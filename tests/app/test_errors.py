@@ -1,0 +1,186 @@
+"""Every kind of bad input gets its 4xx as RFC 9457 problem+json naming the field and why."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from typing import Any
+
+import httpx
+
+from tests.app import study
+
+
+def _problem(response: httpx.Response, status: int, kind: str) -> dict[str, Any]:
+    assert response.status_code == status, response.text
+    assert response.headers["content-type"] == "application/problem+json"
+    problem = response.json()
+    assert problem["type"] == f"/problems/{kind}"
+    assert problem["status"] == status
+    assert problem["title"] and problem["detail"]
+    return problem
+
+
+def _fields(problem: dict[str, Any]) -> dict[str, str]:
+    return {e["field"]: e["reason"] for e in problem["errors"]}
+
+
+def _with_wing(**changes: Any) -> dict[str, Any]:
+    body = study.solve_request(10.0)
+    body["wing"] = body["wing"] | changes
+    return body
+
+
+def _invalid(client: httpx.Client, body: Any, path: str = "/solve") -> dict[str, str]:
+    response = client.post(path, json=body)
+    return _fields(_problem(response, 422, "invalid-input"))
+
+
+def test_non_finite_numbers(client: httpx.Client) -> None:
+    chord = study.wing()["chord"]
+    text = json.dumps(_with_wing(chord=chord)).replace(str(chord[3]), "NaN", 1)
+    text = text.replace(str(chord[7]), "Infinity", 1).replace(str(chord[9]), "1e999", 1)
+    response = client.post("/solve", content=text, headers={"content-type": "application/json"})
+    fields = _fields(_problem(response, 422, "invalid-input"))
+    assert set(fields) == {"wing.chord[3]", "wing.chord[7]", "wing.chord[9]"}
+    assert all("finite" in reason for reason in fields.values())
+
+
+def test_non_increasing_y(client: httpx.Client) -> None:
+    y = study.wing()["y"]
+    y[5], y[6] = y[6], y[5]
+    assert _invalid(client, _with_wing(y=y)) == {"wing.y": "stations must be strictly increasing"}
+
+
+def test_root_not_at_zero(client: httpx.Client) -> None:
+    y = [v + 0.1 for v in study.wing()["y"]]
+    fields = _invalid(client, _with_wing(y=y))
+    assert list(fields) == ["wing.y"]
+    assert "y[0] = 0" in fields["wing.y"]
+
+
+def test_mismatched_lengths(client: httpx.Client) -> None:
+    fields = _invalid(client, _with_wing(bending_stiffness=study.wing()["bending_stiffness"][:-1]))
+    assert fields == {"wing.bending_stiffness": "has 29 values but y has 30 stations"}
+
+
+def test_mismatched_elastic_axis_list(client: httpx.Client) -> None:
+    fields = _invalid(client, _with_wing(elastic_axis=[0.4] * 3))
+    assert fields == {"wing.elastic_axis": "has 3 values but y has 30 stations"}
+
+
+def test_non_positive_chord_and_stiffness(client: httpx.Client) -> None:
+    w = study.wing()
+    chord, gj = w["chord"], w["torsional_stiffness"]
+    chord[0], gj[4], gj[5] = 0.0, -1.0, 0.0
+    fields = _invalid(client, _with_wing(chord=chord, torsional_stiffness=gj))
+    assert set(fields) == {
+        "wing.chord[0]",
+        "wing.torsional_stiffness[4]",
+        "wing.torsional_stiffness[5]",
+    }
+    assert all("greater than 0" in reason for reason in fields.values())
+
+
+def test_too_few_and_too_many_stations(client: httpx.Client) -> None:
+    few = {k: (v[:2] if isinstance(v, list) else v) for k, v in study.wing().items()}
+    fields = _invalid(client, _with_wing(**few))
+    assert set(fields) == {
+        "wing.y",
+        "wing.chord",
+        "wing.bending_stiffness",
+        "wing.torsional_stiffness",
+    }
+    n = 151  # FLEXWING_MAX_STATIONS defaults to 150
+    many = {
+        "y": [i / n for i in range(n)],
+        "chord": [1.0] * n,
+        "elastic_axis": 0.4,
+        "bending_stiffness": [1e4] * n,
+        "torsional_stiffness": [1e3] * n,
+    }
+    fields = _invalid(client, _with_wing(**many))
+    assert list(fields) == ["wing.y"]
+    assert "at most 150" in fields["wing.y"]
+
+
+def test_bad_flight_condition(client: httpx.Client) -> None:
+    body = study.solve_request(10.0)
+    body["flight"] = {"velocity": 0, "alpha": 95, "density": -1}
+    fields = _invalid(client, body)
+    assert set(fields) == {"flight.velocity", "flight.alpha", "flight.density"}
+
+
+def test_too_many_velocities(client: httpx.Client) -> None:
+    body = {"wing": study.wing(), "flight": {"alpha": 5}, "velocities": [10.0] * 51}
+    fields = _invalid(client, body, "/sweep")
+    assert list(fields) == ["velocities"]
+    assert "1 to 50" in fields["velocities"]
+    body["velocities"] = {"start": 5, "stop": 10, "count": 10**9}
+    assert list(_invalid(client, body, "/sweep")) == ["velocities.count"]
+    body["velocities"] = [10, -1]
+    assert list(_invalid(client, body, "/sweep")) == ["velocities[1]"]
+
+
+def test_wrong_types_unknown_fields_and_missing_fields(client: httpx.Client) -> None:
+    body = _with_wing(elastic_axis=[0.4, "a"])
+    body["flght"] = {}
+    del body["flight"]
+    fields = _invalid(client, body)
+    assert set(fields) == {"wing.elastic_axis[1]", "flght", "flight"}
+
+
+def test_initial_guess_of_the_wrong_length(client: httpx.Client) -> None:
+    body = study.solve_request(10.0, initial_guess={"heave": [0.0] * 29, "twist": [0.0] * 30})
+    assert _invalid(client, body) == {"initial_guess.heave": "has 29 values but y has 30"}
+
+
+def test_invalid_options(client: httpx.Client) -> None:
+    body = study.solve_request(10.0, options={"tolerance": 0, "max_iterations": 0})
+    assert set(_invalid(client, body)) == {"options.tolerance", "options.max_iterations"}
+
+
+def test_invalid_json(client: httpx.Client) -> None:
+    response = client.post(
+        "/solve", content=b"{not json", headers={"content-type": "application/json"}
+    )
+    fields = _fields(_problem(response, 422, "invalid-input"))
+    assert list(fields) == ["body"]
+    assert fields["body"].startswith("invalid JSON")
+
+
+def test_oversized_body_declared(client: httpx.Client) -> None:
+    response = client.post("/solve", content=b" " * 1_000_001)  # default limit: 1,000,000 bytes
+    problem = _problem(response, 413, "body-too-large")
+    assert problem["max_body_bytes"] == 1_000_000
+
+
+def test_oversized_body_streamed(client: httpx.Client) -> None:
+    def chunks() -> Iterator[bytes]:
+        for _ in range(20):
+            yield b" " * 100_000
+
+    response = client.post("/solve", content=chunks())  # chunked: no Content-Length
+    _problem(response, 413, "body-too-large")
+
+
+def test_a_body_under_the_limit_passes_the_streamed_check(client: httpx.Client) -> None:
+    body = json.dumps(study.solve_request(10.0)).encode()
+
+    def chunks() -> Iterator[bytes]:
+        yield from (body[i : i + 1000] for i in range(0, len(body), 1000))
+
+    response = client.post("/solve", content=chunks(), headers={"content-type": "application/json"})
+    assert response.status_code == 200
+
+
+def test_unknown_path_and_method(client: httpx.Client) -> None:
+    _problem(client.get("/nowhere"), 404, "not-found")
+    _problem(client.get("/solve"), 405, "method-not-allowed")
+
+
+def test_problem_types_are_described(client: httpx.Client) -> None:
+    response = client.get("/problems/no-equilibrium")
+    assert response.status_code == 200
+    assert response.json()["status"] == 422
+    _problem(client.get("/problems/nonsense"), 404, "not-found")

@@ -1,0 +1,133 @@
+"""Worker death, time budgets and overload against a live server (`fault_server`: CasADi's
+virtual machine, so a wing of 150 stations takes about a second per solve, long enough to kill
+its worker while it runs; the sweep budget is 0.5 s, and at most 3 solves may be pending)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+from concurrent.futures import Future, ThreadPoolExecutor
+from typing import Any
+
+import httpx
+import numpy as np
+import pytest
+
+from tests.app import study
+from tests.app.conftest import Server
+
+
+def _big_wing(n: int = 150) -> dict[str, Any]:
+    """The study's wing on 150 stations: ~0.3 s to build its model and ~0.6 s per solve on the
+    virtual machine, against ~20 ms for 30 stations."""
+    chord = np.sqrt(np.linspace(2, 0.02, n))
+    return {
+        "y": np.linspace(0, 5, n).tolist(),
+        "chord": chord.tolist(),
+        "elastic_axis": 0.4,
+        "bending_stiffness": (2e4 * chord**3).tolist(),
+        "torsional_stiffness": (1e3 * chord**3).tolist(),
+    }
+
+
+def _post_big(server: Server, velocity: float) -> httpx.Response:
+    body = {"wing": _big_wing(), "flight": {"velocity": velocity, "alpha": 5.0}}
+    with server.client(timeout=120) as client:
+        return client.post("/solve", json=body)
+
+
+def _wait_pending(server: Server, count: int) -> None:
+    """Wait until `count` solves are running or queued in the server (no timing assumed)."""
+    deadline = time.monotonic() + 60
+    while server.metric("flexwing_pending_solves") < count:
+        assert time.monotonic() < deadline, "requests never reached the pool"
+        time.sleep(0.01)
+
+
+def _kill(pids: list[int]) -> None:
+    for pid in pids:
+        os.kill(pid, signal.SIGKILL)
+
+
+def _small_solve_works(server: Server) -> None:
+    with server.client() as client:
+        response = client.post("/solve", json=study.solve_request(9.0 + time.time() % 1))
+    assert response.status_code == 200, response.text
+
+
+def test_killed_worker_is_replaced_and_its_request_retried(fault_server: Server) -> None:
+    pids = fault_server.wait_ready()
+    died = fault_server.metric("flexwing_worker_restarts_total", reason="died")
+    with ThreadPoolExecutor(1) as pool:
+        future = pool.submit(_post_big, fault_server, 10.0)
+        _wait_pending(fault_server, 1)
+        _kill(pids)
+        response = future.result()
+    assert response.status_code == 200, response.text  # retried once on the new pool
+    new_pids = fault_server.wait_ready(exclude_pids=frozenset(pids))
+    assert len(new_pids) == 2
+    assert fault_server.metric("flexwing_worker_restarts_total", reason="died") == died + 2
+    _small_solve_works(fault_server)
+
+
+def test_a_request_whose_workers_die_twice_gets_503(fault_server: Server) -> None:
+    pids = fault_server.wait_ready()
+    with ThreadPoolExecutor(1) as pool:
+        future = pool.submit(_post_big, fault_server, 11.0)
+        _wait_pending(fault_server, 1)
+        _kill(pids)
+        _kill(fault_server.wait_ready(exclude_pids=frozenset(pids)))  # kills the retry too
+        response = future.result()
+    assert response.status_code == 503
+    assert response.headers["content-type"] == "application/problem+json"
+    assert response.json()["type"] == "/problems/worker-lost"
+    assert int(response.headers["retry-after"]) >= 0
+    fault_server.wait_ready(exclude_pids=frozenset(pids))
+    _small_solve_works(fault_server)
+
+
+def test_a_worker_killed_while_idle_is_replaced(fault_server: Server) -> None:
+    pids = fault_server.wait_ready()
+    _kill(pids[:1])
+    assert len(fault_server.wait_ready(exclude_pids=frozenset(pids))) == 2
+    _small_solve_works(fault_server)
+
+
+def test_a_sweep_past_its_budget_gets_504_and_recycles_the_pool(fault_server: Server) -> None:
+    """Following the 150-station branch to its fold takes seconds on the virtual machine."""
+    pids = fault_server.wait_ready()
+    timeouts = fault_server.metric("flexwing_worker_restarts_total", reason="timeout")
+    body = {"wing": _big_wing(), "flight": {"alpha": 5.0}, "velocities": [10, 15]}
+    with fault_server.client() as client:
+        response = client.post("/sweep", json=body)
+    assert response.status_code == 504
+    problem = response.json()
+    assert problem["type"] == "/problems/solve-timeout"
+    assert problem["timeout"] == 0.5
+    assert fault_server.metric("flexwing_worker_restarts_total", reason="timeout") > timeouts
+    fault_server.wait_ready(exclude_pids=frozenset(pids))
+    _small_solve_works(fault_server)
+
+
+def test_overload_is_shed_with_503_and_retry_after(fault_server: Server) -> None:
+    fault_server.wait_ready()
+    shed = fault_server.metric("flexwing_requests_shed_total")
+    with ThreadPoolExecutor(3) as pool:
+        futures: list[Future[httpx.Response]] = [
+            pool.submit(_post_big, fault_server, v) for v in (12.0, 13.0, 14.0)
+        ]
+        _wait_pending(fault_server, 3)  # FLEXWING_MAX_PENDING=3: two running, one waiting
+        with fault_server.client() as client:
+            response = client.post("/solve", json=study.solve_request(8.5))
+        results = [f.result() for f in futures]
+    assert response.status_code == 503
+    assert response.json()["type"] == "/problems/overloaded"
+    assert response.headers["retry-after"] == "1"
+    assert [r.status_code for r in results] == [200, 200, 200]
+    assert fault_server.metric("flexwing_requests_shed_total") == shed + 1
+
+
+@pytest.mark.parametrize("path", ["/healthz", "/readyz"])
+def test_the_service_still_answers_after_the_faults(fault_server: Server, path: str) -> None:
+    assert httpx.get(fault_server.base_url + path, timeout=10).status_code == 200
