@@ -48,6 +48,7 @@ class ContinuationSettings:
         per step.
     max_turn: [rad] largest angle between consecutive tangents of an accepted step (so a step
         cannot jump across the fold onto a distant part of the curve unnoticed).
+    max_displacement: largest corrector displacement of an accepted step, relative to the step.
     max_steps: accepted steps before giving up.
     fold_tolerance: |dq/ds| at which the fold counts as located. q is quadratic in arclength
         there, so q's relative error is about this squared.
@@ -60,6 +61,7 @@ class ContinuationSettings:
     max_corrector_iterations: int = 6
     target_correction: float = 0.05
     max_turn: float = 0.35
+    max_displacement: float = 0.5
     max_steps: int = 200
     fold_tolerance: float = 1e-6
     max_fold_iterations: int = 12
@@ -187,12 +189,24 @@ def _tangent(evaluation: Evaluation, q: float, scale: np.ndarray, previous: np.n
     return tangent / np.linalg.norm(tangent)
 
 
+def _orientation(evaluation: Evaluation, q: float, scale: np.ndarray, tangent: np.ndarray) -> int:
+    """Sign of det [[J, r1], [t^T]]: constant along a branch, flips across a bifurcation.
+
+    (A fold does not flip it: there the augmented Jacobian keeps full rank. dq/ds, which equals
+    det J over this determinant, flips through det J instead.)
+    """
+    sign, _ = np.linalg.slogdet(_bordered(evaluation, q, scale, tangent))
+    return int(sign)
+
+
 @dataclass
 class _Corrected:
     w: np.ndarray
     evaluation: Evaluation
     tangent: np.ndarray
     first_correction: float  # [-] norm of the first Newton update (the predictor's error)
+    displacement: float  # [-] distance from the start of the corrector
+    orientation: int  # sign of det [[J, r1], [tangent^T]] (scaled)
 
 
 class _Tracer:
@@ -228,7 +242,11 @@ class _Tracer:
                     tangent = _tangent(evaluation, q, self.scale, normal)
                 except np.linalg.LinAlgError:
                     return None
-                return _Corrected(w, evaluation, tangent, first_correction)
+                orientation = _orientation(evaluation, q, self.scale, tangent)
+                displacement = float(np.linalg.norm(w - w_start))
+                return _Corrected(
+                    w, evaluation, tangent, first_correction, displacement, orientation
+                )
             if iteration == self.settings.max_corrector_iterations:
                 return None
             rhs = np.append(residual, normal @ w - offset)
@@ -261,6 +279,7 @@ def trace_branch(
     upward = np.zeros(w.size)
     upward[-1] = 1.0
     tangent = _tangent(evaluation, 0.0, scale, upward)
+    orientation = _orientation(evaluation, 0.0, scale, tangent)
     points = [BranchPoint(jig_state.copy(), 0.0, tangent, 0.0)]
 
     def finish(folded: bool, reason: str | None = None) -> Branch:
@@ -277,14 +296,23 @@ def trace_branch(
             if corrected is not None
             else math.inf
         )
-        if corrected is None or turn > settings.max_turn:
+        # Reject a step that turned too far, moved too far from its prediction, or crossed a
+        # bifurcation: near-bifurcations (a wing at small alpha, whose branch folds just short
+        # of the linear divergence) let a long step land on another branch whose tangent looks
+        # like ours; only the orientation flip tells.
+        if (
+            corrected is None
+            or turn > settings.max_turn
+            or corrected.displacement > settings.max_displacement * step
+            or corrected.orientation != orientation
+        ):
             step /= 2
             if step < settings.min_step:
                 return finish(False, _stalled(current))
             continue
         point = _point(corrected, scale, current)
         if point.dq_ds <= 0:
-            points.append(_locate_fold(tracer, current, point))
+            points.append(_locate_fold(tracer, current, point, orientation))
             return finish(True)
         points.append(point)
         if point.dynamic_pressure >= q_limit:
@@ -301,7 +329,10 @@ def trace_branch(
 
 
 def _stalled(point: BranchPoint) -> str:
-    return f"continuation stalled at q = {point.dynamic_pressure:.6g} Pa (step below minimum)"
+    return (
+        f"continuation stalled at q = {point.dynamic_pressure:.6g} Pa (step below minimum: "
+        "a bifurcation or a corner of the branch)"
+    )
 
 
 def _point(corrected: _Corrected, scale: np.ndarray, previous: BranchPoint) -> BranchPoint:
@@ -312,7 +343,9 @@ def _point(corrected: _Corrected, scale: np.ndarray, previous: BranchPoint) -> B
     return BranchPoint(x, q, corrected.tangent, previous.arclength + float(chord))
 
 
-def _locate_fold(tracer: _Tracer, before: BranchPoint, after: BranchPoint) -> BranchPoint:
+def _locate_fold(
+    tracer: _Tracer, before: BranchPoint, after: BranchPoint, orientation: int
+) -> BranchPoint:
     """The fold between `before` (dq/ds > 0) and `after` (dq/ds <= 0).
 
     Points are parameterised by their offset sigma along `before`'s tangent (the hyperplanes of
@@ -336,7 +369,7 @@ def _locate_fold(tracer: _Tracer, before: BranchPoint, after: BranchPoint) -> Br
         fraction = (sigma - s_low) / (s_high - s_low)
         start = w_low + fraction * (w_high - w_low)
         corrected = tracer.correct(start, normal, float(normal @ w_before) + sigma)
-        if corrected is None:
+        if corrected is None or corrected.orientation != orientation:
             break
         # Hyperplanes orthogonal to `normal` keep the orientation of `before`'s tangent.
         trial = _point(corrected, scale, before)

@@ -34,6 +34,7 @@ __all__ = [
     "fit_divergence",
     "find_fold",
     "equilibrium_branch",
+    "clear_branch_cache",
     "search_velocity_limit",
     "divergence_summary",
 ]
@@ -206,6 +207,12 @@ def equilibrium_branch(wing: Wing, alpha: float, q_limit: float) -> Branch:
         while len(_branches) > _CACHE_SIZE:
             _branches.popitem(last=False)
     return branch
+
+
+def clear_branch_cache() -> None:
+    """Forget every traced branch (benchmarks, and callers that must bound memory)."""
+    with _branches_lock:
+        _branches.clear()
 
 
 def _mean_chord(wing: Wing) -> float:
