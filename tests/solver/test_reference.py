@@ -64,15 +64,14 @@ def _points() -> list:
 
 @functools.cache
 def _flexwing_sweep(reference: Reference) -> dict[float, solver.Equilibrium]:
-    """flexwing at the reference's compared velocities, in its order, warm-started in turn."""
-    result = solver.sweep(
-        reference.wing, _compared_velocities(reference), reference.alpha, reference.rho
-    )
-    solved = {}
-    for point in result.points:
-        if point.equilibrium is None:
-            pytest.fail(f"{reference.name}: flexwing found no equilibrium at {point.velocity} m/s")
-        solved[point.velocity] = point.equilibrium
+    """flexwing at the reference's compared velocities, in its order, each solve warm-started
+    from the previous equilibrium (the first from the jig), as AeroSandbox's were."""
+    solved: dict[float, solver.Equilibrium] = {}
+    previous = None
+    for velocity in _compared_velocities(reference):
+        flight = solver.FlightCondition(velocity, reference.alpha, reference.rho)
+        previous = solver.solve(reference.wing, flight, initial_guess=previous)
+        solved[velocity] = previous
     return solved
 
 
