@@ -181,7 +181,9 @@ def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarr
     return matrix
 
 
-def _tangent(evaluation: Evaluation, q: float, scale: np.ndarray, previous: np.ndarray):
+def _tangent(
+    evaluation: Evaluation, q: float, scale: np.ndarray, previous: np.ndarray
+) -> np.ndarray:
     """Unit tangent at (x, q), oriented so that its projection on `previous` is positive."""
     rhs = np.zeros(previous.size)
     rhs[-1] = 1.0

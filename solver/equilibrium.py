@@ -94,7 +94,7 @@ class Equilibrium:
     warm_start: bool
     seconds: float
     evaluation: Evaluation  # r0, r1, J0, J1 at `state`: warm starts and continuation reuse it
-    fold: Fold | None = None  # the branch's fold, with `SolverOptions.find_fold` (issue 3)
+    fold: Fold | None = None  # with `SolverOptions.find_fold`, or when solve had to consult it
 
     @property
     def y(self) -> np.ndarray:

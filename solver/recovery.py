@@ -39,7 +39,8 @@ def settle(
 ) -> Equilibrium:
     """The answer of `solve` given Newton's outcome: `equilibrium` if it converged, else `failure`.
 
-    Stable equilibria pass through (with the fold attached if `options.find_fold`).
+    Stable equilibria pass through (with the fold attached if `options.find_fold`); every
+    other answer carries the fold it was judged by.
     """
     fold: Fold | None = None
     if options.find_fold:
@@ -56,9 +57,9 @@ def settle(
         raise NoEquilibrium(flight.velocity, fold.velocity)
     retried = _from_branch(wing, flight, options, started)
     if retried is not None and retried.stability.stable:
-        return _with_fold(retried, fold if options.find_fold else None)
+        return _with_fold(retried, fold)
     if equilibrium is not None:
-        return _with_fold(equilibrium, fold if options.find_fold else None)
+        return _with_fold(equilibrium, fold)
     assert failure is not None
     raise failure
 
