@@ -1,0 +1,287 @@
+"""The service through HTTP on loopback, against the bare solver on the same requests.
+
+    .venv/bin/python benchmarks/http_benchmark.py [--url http://127.0.0.1:8000] [--seconds 10]
+
+Without --url it starts `uvicorn app.main:app` on a free loopback port with the default settings
+(FLEXWING_WORKERS = CPU count) and waits for /readyz. All requests use the design study's wing
+(N = 30, alpha 5 deg). Measured:
+
+- /solve latency, one client, sequential: airspeeds drawn uniformly from 6-20 m/s, all distinct,
+  so every request is solved (warm-started from the service's stored equilibria), never answered
+  from the result cache; and, apart, a repeated request (result cache).
+- /sweep of the study's six speeds [6, 10, 12, 15, 18, 20]: for a wing the worker has seen (its
+  branch to the fold is cached; the density varies by 1e-12 so the result cache misses) and for a
+  new wing (the stiffness varies: the fold continuation runs).
+- throughput: 16 concurrent clients (asyncio + httpx) posting distinct /solve requests for
+  --seconds; solves per second and errors.
+- the bare solver in this process on the same requests: its share is the solver's time, the rest
+  of the HTTP figure is the web layer (HTTP, validation, JSON, inter-process transfer).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import os
+import random
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+# One BLAS thread, as in the service's workers (set before numpy loads OpenBLAS).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import httpx
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+SWEEP = [6.0, 10.0, 12.0, 15.0, 18.0, 20.0]
+
+
+def study_wing(stiffness_scale: float = 1.0) -> dict[str, Any]:
+    y = np.linspace(0, 5, 30)
+    chord = np.sqrt(np.linspace(2, 0.02, 30))
+    return {
+        "y": y.tolist(),
+        "chord": chord.tolist(),
+        "elastic_axis": 0.4,
+        "bending_stiffness": (2e4 * chord**3 * stiffness_scale).tolist(),
+        "torsional_stiffness": (1e3 * chord**3 * stiffness_scale).tolist(),
+    }
+
+
+def percentile(values: list[float], q: float) -> float:
+    return float(np.percentile(np.asarray(values), q))
+
+
+def ms(seconds: float) -> str:
+    return f"{seconds * 1e3:.2f} ms"
+
+
+@contextmanager
+def server(url: str | None) -> Iterator[str]:
+    if url is not None:
+        yield url
+        return
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    process = subprocess.Popen(
+        [
+            *(sys.executable, "-m", "uvicorn", "app.main:app", "--port", str(port)),
+            *("--host", "127.0.0.1", "--log-level", "warning", "--no-access-log"),
+        ],
+        cwd=ROOT,
+    )
+    base = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + 300
+        while time.monotonic() < deadline:
+            try:
+                if httpx.get(base + "/readyz", timeout=5).status_code == 200:
+                    break
+            except httpx.TransportError:
+                pass
+            time.sleep(0.1)
+        else:
+            raise TimeoutError("the server did not become ready")
+        yield base
+    finally:
+        process.send_signal(signal.SIGINT)
+        process.wait(timeout=30)
+
+
+def distinct_velocities(seed: int) -> Iterator[float]:
+    rng = random.Random(seed)
+    while True:
+        yield rng.uniform(6.0, 20.0)
+
+
+def solve_body(wing: dict[str, Any], velocity: float) -> bytes:
+    return json.dumps({"wing": wing, "flight": {"velocity": velocity, "alpha": 5.0}}).encode()
+
+
+def time_requests(send: Callable[[], httpx.Response], count: int) -> list[float]:
+    times = []
+    for _ in range(count):
+        started = time.perf_counter()
+        response = send()
+        times.append(time.perf_counter() - started)
+        if response.status_code != 200:
+            raise RuntimeError(f"{response.status_code}: {response.text}")
+    return times
+
+
+def http_latency(base: str, count: int) -> dict[str, list[float]]:
+    wing = study_wing()
+    headers = {"content-type": "application/json"}
+    velocities = distinct_velocities(1)
+    out: dict[str, list[float]] = {}
+    with httpx.Client(base_url=base, timeout=60) as client:
+        # Prime the state cache (one stored equilibrium) and the connection.
+        client.post("/solve", content=solve_body(wing, 10.0), headers=headers)
+        out["solve"] = time_requests(
+            lambda: client.post(
+                "/solve", content=solve_body(wing, next(velocities)), headers=headers
+            ),
+            count,
+        )
+        cached = solve_body(wing, 10.0)
+        out["cached"] = time_requests(
+            lambda: client.post("/solve", content=cached, headers=headers), count
+        )
+        n = iter(range(1, 10**9))
+
+        def sweep_seen() -> httpx.Response:
+            density = 1.225 * (1 + 1e-12 * next(n))
+            body = {"wing": wing, "flight": {"alpha": 5.0, "density": density}, "velocities": SWEEP}
+            return client.post("/sweep", json=body)
+
+        sweep_seen()  # each worker traces the branch once
+        sweep_seen()
+        out["sweep_seen"] = time_requests(sweep_seen, max(count // 10, 20))
+
+        def sweep_new() -> httpx.Response:
+            body = {
+                "wing": study_wing(1 + 1e-9 * next(n)),
+                "flight": {"alpha": 5.0},
+                "velocities": SWEEP,
+            }
+            return client.post("/sweep", json=body)
+
+        out["sweep_new"] = time_requests(sweep_new, max(count // 20, 10))
+    return out
+
+
+async def throughput(
+    base: str, clients: int, seconds: float
+) -> tuple[int, int, float, list[float]]:
+    wing = study_wing()
+    headers = {"content-type": "application/json"}
+    velocities = distinct_velocities(2)
+    ok = errors = 0
+    latencies: list[float] = []
+    limits = httpx.Limits(max_connections=clients, max_keepalive_connections=clients)
+    async with httpx.AsyncClient(base_url=base, timeout=60, limits=limits) as client:
+        await client.post("/solve", content=solve_body(wing, 10.0), headers=headers)
+        deadline = time.perf_counter() + seconds
+
+        async def one_client() -> None:
+            nonlocal ok, errors
+            while time.perf_counter() < deadline:
+                started = time.perf_counter()
+                try:
+                    r = await client.post(
+                        "/solve", content=solve_body(wing, next(velocities)), headers=headers
+                    )
+                except httpx.HTTPError:
+                    errors += 1
+                    continue
+                latencies.append(time.perf_counter() - started)
+                if r.status_code == 200 and not r.json()["solver"]["cached"]:
+                    ok += 1
+                else:
+                    errors += 1
+
+        started = time.perf_counter()
+        await asyncio.gather(*(one_client() for _ in range(clients)))
+        elapsed = time.perf_counter() - started
+    return ok, errors, elapsed, latencies
+
+
+def bare_solver(count: int) -> dict[str, list[float]]:
+    """The same work in this process: what the service adds is the difference."""
+    import solver
+    from solver.compiled import compile_now
+
+    compile_now(30)
+    raw = study_wing()
+    wing = solver.Wing.create(
+        raw["y"], raw["chord"], 0.4, raw["bending_stiffness"], raw["torsional_stiffness"]
+    )
+    velocities = distinct_velocities(1)
+    stored = solver.solve(wing, solver.FlightCondition(10.0, 5.0))
+    states = {10.0: stored.state}
+    out: dict[str, list[float]] = {"solve_warm": [], "solve_cold": [], "sweep_seen": []}
+    for _ in range(count):
+        v = next(velocities)
+        nearest = min(states, key=lambda s: abs(s**2 - v**2))
+        started = time.perf_counter()
+        eq = solver.solve(wing, solver.FlightCondition(v, 5.0), states[nearest])
+        out["solve_warm"].append(time.perf_counter() - started)
+        states[v] = eq.state
+        started = time.perf_counter()
+        solver.solve(wing, solver.FlightCondition(v, 5.0))
+        out["solve_cold"].append(time.perf_counter() - started)
+    solver.sweep(wing, SWEEP, 5.0, 1.225)
+    for _ in range(max(count // 10, 20)):
+        started = time.perf_counter()
+        solver.sweep(wing, SWEEP, 5.0, 1.225)
+        out["sweep_seen"].append(time.perf_counter() - started)
+    out["sweep_new"] = []
+    for i in range(max(count // 20, 10)):
+        scaled = study_wing(1 + 1e-9 * (i + 1))
+        new = solver.Wing.create(
+            scaled["y"],
+            scaled["chord"],
+            0.4,
+            scaled["bending_stiffness"],
+            scaled["torsional_stiffness"],
+        )
+        started = time.perf_counter()
+        solver.sweep(new, SWEEP, 5.0, 1.225)
+        out["sweep_new"].append(time.perf_counter() - started)
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--url", help="benchmark a running server instead of starting one")
+    parser.add_argument("--requests", type=int, default=1000, help="sequential /solve requests")
+    parser.add_argument("--clients", type=int, default=16)
+    parser.add_argument("--seconds", type=float, default=10.0, help="throughput run length")
+    args = parser.parse_args()
+
+    print(f"machine: {os.cpu_count()} CPUs; study's wing, N = 30, alpha 5 deg")
+    bare = bare_solver(args.requests // 2)
+    with server(args.url) as base:
+        http = http_latency(base, args.requests)
+        ok, errors, elapsed, latencies = asyncio.run(throughput(base, args.clients, args.seconds))
+
+    def row(name: str, values: list[float]) -> None:
+        print(
+            f"  {name:<44} p50 {ms(statistics.median(values)):>10}   "
+            f"p99 {ms(percentile(values, 99)):>10}   n={len(values)}"
+        )
+
+    print("HTTP, one client, sequential:")
+    row("/solve, distinct airspeeds (warm-started)", http["solve"])
+    row("/solve, repeated request (result cache)", http["cached"])
+    row("/sweep 6 speeds, wing seen (branch cached)", http["sweep_seen"])
+    row("/sweep 6 speeds, new wing (fold continuation)", http["sweep_new"])
+    print("bare solver, same process, same requests:")
+    row("solve, warm start from nearest state", bare["solve_warm"])
+    row("solve, cold (from the jig)", bare["solve_cold"])
+    row("sweep 6 speeds, wing seen", bare["sweep_seen"])
+    row("sweep 6 speeds, new wing", bare["sweep_new"])
+    print("web-layer overhead (HTTP p50 minus bare p50):")
+    for name, bare_name in (("solve", "solve_warm"), ("sweep_seen", "sweep_seen")):
+        overhead = statistics.median(http[name]) - statistics.median(bare[bare_name])
+        print(f"  {name:<10} {ms(overhead)}")
+    print(f"throughput, {args.clients} concurrent clients, {elapsed:.1f} s:")
+    print(f"  {ok / elapsed:.0f} solves/s, {errors} errors")
+    row("latency under load", latencies)
+
+
+if __name__ == "__main__":
+    main()
