@@ -118,7 +118,7 @@ def fit_divergence(equilibria: Sequence[Equilibrium], amplification: str = "CL")
     """
     if amplification not in ("CL", "lift"):
         raise ValueError(f"amplification must be 'CL' or 'lift', got {amplification!r}")
-    stable = [e for e in equilibria if e.stability.stable and e.rigid_lift != 0]
+    stable = [e for e in equilibria if e.stability.stable and _amplification(e, amplification) > 0]
     pressures = np.array([e.dynamic_pressure for e in stable])
     if np.unique(pressures).size < 2:
         return FitDivergence(
@@ -126,14 +126,16 @@ def fit_divergence(equilibria: Sequence[Equilibrium], amplification: str = "CL")
             None,
             None,
             None,
-            f"the fit needs stable equilibria at two or more airspeeds, got {len(stable)}",
+            f"the fit needs stable, lifting equilibria at two or more airspeeds, got {len(stable)}",
             amplification,
             len(stable),
         )
-    ratio = np.array([e.lift / e.rigid_lift for e in stable])
-    if amplification == "CL":
-        ratio *= np.array([e.reference_area / e.deformed_area for e in stable])
-    slope, intercept = (float(c) for c in np.polyfit(pressures, 1.0 / ratio, 1))
+    inverse = np.array([1.0 / _amplification(e, amplification) for e in stable])
+    slope, intercept = (float(c) for c in np.polyfit(pressures, inverse, 1))
+    if not (math.isfinite(slope) and math.isfinite(intercept)):
+        return FitDivergence(
+            None, None, None, None, "the fit is not finite", amplification, len(stable)
+        )
     if slope >= 0:
         return FitDivergence(
             slope,
@@ -156,6 +158,20 @@ def fit_divergence(equilibria: Sequence[Equilibrium], amplification: str = "CL")
         amplification,
         len(stable),
     )
+
+
+def _amplification(equilibrium: Equilibrium, amplification: str) -> float:
+    """A [-]: lift or CL (deformed area) over the rigid jig's; NaN where the rigid lift is 0.
+
+    A wing at (nearly) zero lift has no meaningful amplification: Newton may stop on the
+    unloaded jig when the whole residual lies within tolerance.
+    """
+    if equilibrium.rigid_lift == 0:
+        return math.nan
+    ratio = equilibrium.lift / equilibrium.rigid_lift
+    if amplification == "CL":
+        ratio *= equilibrium.reference_area / equilibrium.deformed_area
+    return ratio if math.isfinite(ratio) else math.nan
 
 
 # Past the linear divergence speed by this factor the search goes on: with a load on the jig the
