@@ -1,6 +1,11 @@
 """Reference equilibria computed with AeroSandbox, and where to find them.
 
-Two sources, same file format (see `generate_reference.py` for the format and how to regenerate):
+Two sources, same file format (see `generate_reference.py` for the format). To regenerate one
+of ours, from the repository root, with any Python that has AeroSandbox 4.2.10:
+
+    /tmp/asbenv/bin/python tests/reference/generate_reference.py \
+        tests/reference/data/case_X.json tests/reference/data/ref_X.json
+
 
 - shared: ``case_*.json`` / ``ref_*.json`` in the ``shared/reference`` directory that sits next to
   the repository root (CI clones the repository into X/main with X/shared beside it). The
@@ -17,7 +22,7 @@ Two sources, same file format (see `generate_reference.py` for the format and ho
   stepped_spar      N = 30, elliptic-like planform with a 0.12 m tip chord, stepped EI and GJ
                     (three spar sections), elastic axis at 30 % chord, alpha 8 deg, NACA 0012,
                     10-25 m/s: heave up to 10 % of the semispan, where the heave-times-chordwise-
-                    force torque reverses the tip twist.
+                    force torque turns the tip twist back (3.4 deg at 18 m/s, 0.2 deg at 25 m/s).
   coarse_rect       N = 5 (three interior stations), rectangular, elastic axis at mid-chord,
                     alpha 3 deg, 6-12 m/s (up to a lift amplification of 2).
 """
