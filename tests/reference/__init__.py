@@ -1,11 +1,10 @@
 """Reference equilibria computed with AeroSandbox, and where to find them.
 
 Two sources, same file format (see `generate_reference.py` for the format). To regenerate one
-of ours, from the repository root, with any Python that has AeroSandbox 4.2.10:
+of ours with any Python that has AeroSandbox 4.2.10:
 
-    /tmp/asbenv/bin/python tests/reference/generate_reference.py \
-        tests/reference/data/case_X.json tests/reference/data/ref_X.json
-
+    cd tests/reference
+    /tmp/asbenv/bin/python generate_reference.py data/case_X.json data/ref_X.json
 
 - shared: ``case_*.json`` / ``ref_*.json`` in the ``shared/reference`` directory that sits next to
   the repository root (CI clones the repository into X/main with X/shared beside it). The
