@@ -165,6 +165,10 @@ class WorkerPool:
             if generation == self._generation and not self._closing:
                 self._recycle(generation, "died")
             return
+        except Exception as error:  # e.g. a remote executor that cannot run the job
+            log.exception("warming the worker pool failed")
+            self.detail = f"warm-up failed: {type(error).__name__}: {error}"
+            return
         if generation != self._generation or self._closing:
             return
         compiled = all(all(r.compiled.values()) for r in reports)
@@ -186,7 +190,7 @@ class WorkerPool:
         if generation != self._generation or self._closing or self._executor is None:
             return
         old = self._executor
-        replaced = max(len(self.pids()), 1) if reason == "timeout" else self.settings.workers
+        replaced = len(self.pids()) if reason == "timeout" else self.settings.workers
         log.warning("replacing the worker pool (%s)", reason)
         self.metrics.worker_restarts.labels(reason).inc(replaced)
         self._replace_executor()
@@ -224,6 +228,7 @@ class WorkerPool:
     async def _run(self, fn: Callable[[Any], T], job: Any, timeout: float, kind: str) -> T:
         attempts = 2 if self.settings.retry_on_worker_loss else 1
         attempt = 0
+        refused = 0
         while True:
             async with self._slots:
                 await self._ready.wait()
@@ -231,16 +236,20 @@ class WorkerPool:
                 assert executor is not None
                 try:
                     future: Future[T] = executor.submit(fn, job)
-                except (BrokenProcessPool, RuntimeError):
+                except (BrokenProcessPool, RuntimeError) as error:
                     # The pool broke while idle: this job never ran, so no attempt is spent.
+                    refused += 1
+                    if refused > 2:
+                        raise WorkerLost(f"the executor refuses jobs: {error}") from None
                     self._recycle(generation, "died")
                     continue
                 try:
                     return await asyncio.wait_for(asyncio.wrap_future(future), timeout)
                 except TimeoutError:
                     self.metrics.solves.labels(kind, "timeout").inc()
-                    future.cancel()
-                    self._recycle(generation, "timeout")
+                    if not future.cancel() and isinstance(executor, ProcessPoolExecutor):
+                        # A running job cannot be cancelled: kill its process (and pool).
+                        self._recycle(generation, "timeout")
                     raise SolveTimeout(timeout) from None
                 except BrokenProcessPool:
                     self._recycle(generation, "died")

@@ -239,6 +239,10 @@ def install_handlers(app: FastAPI) -> None:
 
     async def on_http(request: Request, exc: Exception) -> JSONResponse:
         assert isinstance(exc, StarletteHTTPException)
+        if exc.status_code == 400:
+            # FastAPI's only 400: a body it could not decode at all (e.g. not UTF-8).
+            field = FieldError("body", f"invalid JSON: {exc.detail}")
+            return problem_response(Problem.invalid([field]), request.url.path)
         slug = {404: "not-found", 405: "method-not-allowed", 413: "body-too-large"}.get(
             exc.status_code, "http-error"
         )

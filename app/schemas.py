@@ -19,6 +19,8 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
 from solver.wing import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
 
 __all__ = [
+    "SOLVE_EXAMPLES",
+    "SWEEP_EXAMPLES",
     "Divergence",
     "FitDivergence",
     "Flight",
@@ -67,6 +69,36 @@ def study_wing() -> dict[str, Any]:
 
 _STUDY_WING = study_wing()
 _STUDY_SWEEP: list[Any] = [6.0, 10.0, 12.0, 15.0, 18.0, 20.0]
+_STUDY_SOLVE: dict[str, Any] = {
+    "wing": _STUDY_WING,
+    "flight": {"velocity": 10.0, "alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+}
+_STUDY_SWEEP_REQUEST: dict[str, Any] = {
+    "wing": _STUDY_WING,
+    "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "velocities": _STUDY_SWEEP,
+}
+# Request-body examples for the OpenAPI document (what /docs pre-fills).
+SOLVE_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The design study's wing at 10 m/s, alpha 5 deg",
+        "value": _STUDY_SOLVE,
+    },
+    "beyond_divergence": {
+        "summary": "The same wing at 23 m/s: no equilibrium (422, with the fold speed)",
+        "value": _STUDY_SOLVE | {"flight": _STUDY_SOLVE["flight"] | {"velocity": 23.0}},
+    },
+}
+SWEEP_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The design study's sweep: 6 to 20 m/s, alpha 5 deg",
+        "value": _STUDY_SWEEP_REQUEST,
+    },
+    "to_the_fold": {
+        "summary": "Past the fold: 22 and 23 m/s have no equilibrium",
+        "value": _STUDY_SWEEP_REQUEST | {"velocities": [10.0, 15.0, 20.0, 21.0, 22.0, 23.0]},
+    },
+}
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
@@ -195,14 +227,7 @@ class SolveRequest(_Model):
 
     model_config = ConfigDict(
         extra="forbid",
-        json_schema_extra={
-            "examples": [
-                {
-                    "wing": _STUDY_WING,
-                    "flight": {"velocity": 10.0, "alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
-                }
-            ]
-        },
+        json_schema_extra={"examples": [_STUDY_SOLVE]},
     )
 
     wing: Wing
@@ -233,15 +258,7 @@ class SweepRequest(_Model):
 
     model_config = ConfigDict(
         extra="forbid",
-        json_schema_extra={
-            "examples": [
-                {
-                    "wing": _STUDY_WING,
-                    "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
-                    "velocities": _STUDY_SWEEP,
-                }
-            ]
-        },
+        json_schema_extra={"examples": [_STUDY_SWEEP_REQUEST]},
     )
 
     wing: Wing

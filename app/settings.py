@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from functools import lru_cache
+from typing import Literal
 
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
@@ -36,13 +37,16 @@ class Settings(BaseSettings):
             "Client(...).get_executor())."
         ),
     )
-    start_method: str = Field(
+    start_method: Literal["forkserver", "spawn"] = Field(
         default="forkserver",
         description="multiprocessing start method of the local pool: forkserver or spawn.",
     )
     warm_stations: list[int] = Field(
         default=[30],
-        description="Mesh sizes N each worker compiles or loads before the service is ready.",
+        description=(
+            "Mesh sizes N each worker compiles or loads before the service is ready "
+            '(a JSON list, e.g. "[30, 60]").'
+        ),
     )
     warmup_timeout: float = Field(
         default=600.0, gt=0, description="[s] longest wait for one mesh size to compile."

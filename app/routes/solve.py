@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
-from fastapi import APIRouter, Request
+from fastapi import APIRouter, Body, Request
 
 from app.routes.responses import SOLVE_ERRORS
-from app.schemas import SolveRequest, SolveResponse
+from app.schemas import SOLVE_EXAMPLES, SolveRequest, SolveResponse
 
 __all__ = ["router"]
 
@@ -21,7 +21,9 @@ router = APIRouter(tags=["equilibrium"])
     responses=SOLVE_ERRORS,
     summary="Static aeroelastic equilibrium of a wing at one flight condition",
 )
-async def solve(body: SolveRequest, request: Request) -> Any:
+async def solve(
+    body: Annotated[SolveRequest, Body(openapi_examples=SOLVE_EXAMPLES)], request: Request
+) -> Any:
     """Deformation, loads, totals and stability of the wing's equilibrium.
 
     Newton starts from the stored equilibrium of the same wing nearest in dynamic pressure and

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
-from fastapi import APIRouter, Request
+from fastapi import APIRouter, Body, Request
 
 from app.routes.responses import SOLVE_ERRORS
-from app.schemas import SweepRequest, SweepResponse
+from app.schemas import SWEEP_EXAMPLES, SweepRequest, SweepResponse
 
 __all__ = ["router"]
 
@@ -21,7 +21,9 @@ router = APIRouter(tags=["equilibrium"])
     responses=SOLVE_ERRORS,
     summary="Equilibria of a wing over airspeeds, and its torsional divergence",
 )
-async def sweep(body: SweepRequest, request: Request) -> Any:
+async def sweep(
+    body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)], request: Request
+) -> Any:
     """Solves the airspeeds in the given order, each from the previous equilibrium.
 
     A point without equilibrium (beyond the fold) is reported in place with the reason; the

@@ -149,6 +149,13 @@ def test_invalid_json(client: httpx.Client) -> None:
     assert fields["body"].startswith("invalid JSON")
 
 
+def test_a_body_that_is_not_utf8(client: httpx.Client) -> None:
+    response = client.post("/solve", content=b"\xff", headers={"content-type": "application/json"})
+    fields = _fields(_problem(response, 422, "invalid-input"))
+    assert list(fields) == ["body"]
+    assert fields["body"].startswith("invalid JSON")
+
+
 def test_oversized_body_declared(client: httpx.Client) -> None:
     response = client.post("/solve", content=b" " * 1_000_001)  # default limit: 1,000,000 bytes
     problem = _problem(response, 413, "body-too-large")

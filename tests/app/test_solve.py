@@ -58,13 +58,28 @@ def test_study_wing_matches_aerosandbox_through_http(client: httpx.Client) -> No
         assert result["totals"]["CL_deformed_area"] == pytest.approx(ref["CL"], rel=1e-6)
 
 
-def test_schema_example_runs_as_is(client: httpx.Client) -> None:
-    """/docs sends the schema's example: the study's wing at 10 m/s (density 1.225)."""
+def _examples(path: str) -> dict:
     schema = json.loads((ROOT / "openapi" / "openapi.json").read_text())
-    example = schema["components"]["schemas"]["SolveRequest"]["examples"][0]
-    result = _solve(client, example)
-    # Inputs are rounded to 10 digits and the density is 1.225, not 1.2249992: 304.1 N holds.
-    assert result["totals"]["lift"] == pytest.approx(304.1, abs=0.05)
+    body = schema["paths"][path]["post"]["requestBody"]["content"]["application/json"]
+    return {name: example["value"] for name, example in body["examples"].items()}
+
+
+def test_the_documented_examples_run_as_they_are(client: httpx.Client) -> None:
+    """/docs pre-fills these: the study's wing at 10 m/s and 23 m/s, and two sweeps."""
+    solve = _examples("/solve")
+    # Inputs rounded to 10 digits, density 1.225 instead of 1.2249992: 304.1 N still holds.
+    assert _solve(client, solve["study"])["totals"]["lift"] == pytest.approx(304.1, abs=0.05)
+    beyond = client.post("/solve", json=solve["beyond_divergence"])
+    assert beyond.status_code == 422
+    assert beyond.json()["type"] == "/problems/no-equilibrium"
+    sweep = _examples("/sweep")
+    for name, statuses in (
+        ("study", ["equilibrium"] * 6),
+        ("to_the_fold", ["equilibrium"] * 4 + ["no_equilibrium"] * 2),
+    ):
+        response = client.post("/sweep", json=sweep[name])
+        assert response.status_code == 200
+        assert [p["status"] for p in response.json()["points"]] == statuses
 
 
 def test_repeated_request_is_answered_from_the_cache(client: httpx.Client) -> None:
