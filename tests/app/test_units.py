@@ -73,3 +73,17 @@ def test_state_cache_returns_the_nearest_state_of_the_same_wing() -> None:
 def test_validation_error_paths(loc: tuple[object, ...], field: str) -> None:
     errors = validation_errors([{"loc": loc, "msg": "bad", "type": "x"}])
     assert [(e.field, e.reason) for e in errors] == [(field, "bad")]
+
+
+def test_every_app_package_is_installed() -> None:
+    """pyproject lists packages explicitly: a new subpackage of app/ must be added there, or
+    `pip install .` (the Dockerfile) ships an app that cannot import it."""
+    import tomllib
+
+    pyproject = tomllib.loads((study.ROOT / "pyproject.toml").read_text())
+    listed = set(pyproject["tool"]["setuptools"]["packages"])
+    app_dir = study.ROOT / "app"
+    found = {
+        ".".join(init.parent.relative_to(study.ROOT).parts) for init in app_dir.rglob("__init__.py")
+    }
+    assert found <= listed
