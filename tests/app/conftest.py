@@ -8,13 +8,14 @@ short limits, for the tests that kill workers, overrun budgets and overload the 
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import socket
 import subprocess
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -123,6 +124,22 @@ def fault_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
         "FLEXWING_MAX_PENDING": "3",
     }
     yield from _start(tmp, "fault_server", env)
+
+
+@pytest.fixture(scope="module")
+def make_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Callable[..., Server]]:
+    """A factory of extra servers with their own FLEXWING_* environment, e.g.
+    ``make_server("tiny_budget", FLEXWING_SOLVE_TIMEOUT="0.2")``; each is stopped (SIGINT) at
+    the end of the module unless the test has stopped it already."""
+    with contextlib.ExitStack() as stack:
+
+        def make(name: str, **env: str) -> Server:
+            started = _start(tmp_path_factory.mktemp(name), name, env)
+            server = next(started)
+            stack.callback(started.close)
+            return server
+
+        yield make
 
 
 @pytest.fixture

@@ -18,11 +18,15 @@ Counts: CI generates at least `CASES_PER_BODY_OPERATION` requests for each of PO
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator
 from typing import Any
 
+import httpx
 import pytest
 import schemathesis
-from hypothesis import settings
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from schemathesis import GenerationMode
 from schemathesis.checks import not_a_server_error
 from schemathesis.specs.openapi.checks import (
     content_type_conformance,
@@ -31,13 +35,16 @@ from schemathesis.specs.openapi.checks import (
     status_code_conformance,
 )
 
+from solver.wing import ISA_SEA_LEVEL_DENSITY
 from tests.app.conftest import Server
 from tests.conftest import fuzz_examples
+from tests.strategies import alphas, densities, ratios, speed_for, wings
 
 CASES_PER_BODY_OPERATION = 1000
 REQUEST_TIMEOUT = 60.0  # [s] generous: the solve budget is 20 s
 
 calls: Counter[str] = Counter()
+statuses: Counter[str] = Counter()
 
 
 def problem_json_for_every_4xx(ctx: Any, response: Any, case: Any) -> None:
@@ -72,14 +79,116 @@ def api_schema(server: Server) -> schemathesis.BaseSchema:
     return schemathesis.openapi.from_url(server.base_url + "/openapi.json", timeout=30)
 
 
-schema = schemathesis.pytest.from_fixture("api_schema")
+# (schemathesis' own pytest integration, `schema.parametrize()`, fails under pytest 9 with
+# "'Function' object has no attribute '_nodeid'"; its Hypothesis strategies work everywhere.)
+OPERATIONS = [("POST", "/solve"), ("POST", "/sweep"), ("GET", "/healthz"), ("GET", "/readyz")]
+POSITIVE, NEGATIVE = GenerationMode.POSITIVE, GenerationMode.NEGATIVE
+# Parameterless GET operations have no invalid request to generate.
+RUNS = [(m, p, POSITIVE) for m, p in OPERATIONS] + [
+    ("POST", p, NEGATIVE) for p in ("/solve", "/sweep")
+]
 
 
-@schema.parametrize()
-@settings(max_examples=fuzz_examples(CASES_PER_BODY_OPERATION))
-def test_every_response_conforms_and_every_4xx_is_a_problem(case: schemathesis.Case) -> None:
-    calls[case.operation.label] += 1
-    case.call_and_validate(checks=CHECKS, timeout=REQUEST_TIMEOUT)
+def test_the_document_lists_exactly_these_operations(api_schema: schemathesis.BaseSchema) -> None:
+    listed = {(op.method.upper(), op.path) for op in _operations(api_schema)}
+    assert listed == set(OPERATIONS)
+
+
+def _operations(api_schema: schemathesis.BaseSchema) -> list[Any]:
+    return [result.ok() for result in api_schema.get_all_operations()]
+
+
+def _examples(method: str) -> int:
+    """Parameterless GET operations have a handful of distinct requests at most."""
+    return fuzz_examples(CASES_PER_BODY_OPERATION // 2 if method == "POST" else 5)
+
+
+@pytest.mark.parametrize(("method", "path", "mode"), RUNS, ids=[f"{m} {p} {g}" for m, p, g in RUNS])
+def test_every_response_conforms_and_every_4xx_is_a_problem(
+    api_schema: schemathesis.BaseSchema, method: str, path: str, mode: GenerationMode
+) -> None:
+    operation = api_schema[path][method]
+
+    @settings(max_examples=_examples(method))
+    @given(case=operation.as_strategy(generation_mode=mode))
+    def fuzz(case: schemathesis.Case) -> None:
+        calls[f"{method} {path}"] += 1
+        response = case.call_and_validate(checks=CHECKS, timeout=REQUEST_TIMEOUT)
+        statuses[f"{method} {path} {mode} -> {response.status_code}"] += 1
+
+    fuzz()
+
+
+# ------------------------------------------------- physically valid wings through the API
+
+
+@pytest.fixture(scope="module")
+def vm_server(make_server: Any) -> Server:
+    """Random mesh sizes would start a C compilation per N in the workers: CasADi's VM only."""
+    return make_server("vm_server", FLEXWING_COMPILE="0")
+
+
+@pytest.fixture(scope="module")
+def _no_compilation_here() -> Iterator[None]:
+    """`speed_for` builds the model of each N in this process too."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("FLEXWING_COMPILE", "0")
+        yield
+
+
+SOLVER_FAILURES = {"/problems/no-equilibrium", "/problems/not-converged"}
+
+
+def _physical_checks(response: Any) -> None:
+    """A valid wing is never invalid input: 200, or 422 saying the solver found no answer."""
+    if response.status_code == 422:
+        assert response.json()["type"] in SOLVER_FAILURES, response.text
+    else:
+        assert response.status_code == 200, response.text
+
+
+@pytest.mark.usefixtures("_no_compilation_here")
+@settings(max_examples=fuzz_examples(40))
+@given(case=wings(), alpha=alphas, ratio=ratios, density=densities)
+def test_a_physically_valid_wing_gets_an_equilibrium_or_a_solver_problem(
+    api_schema: schemathesis.BaseSchema, vm_server: Server, case, alpha, ratio, density
+) -> None:
+    velocity = speed_for(case.wing, ratio, density)
+    body = {
+        "wing": case.json(),
+        "flight": {"velocity": velocity, "alpha": alpha, "density": density},
+    }
+    request = api_schema["/solve"]["POST"].Case(body=body)
+    response = request.call_and_validate(
+        base_url=vm_server.base_url, checks=CHECKS, timeout=REQUEST_TIMEOUT
+    )
+    calls["POST /solve (physical)"] += 1
+    _physical_checks(response)
+
+
+@pytest.mark.usefixtures("_no_compilation_here")
+@settings(max_examples=fuzz_examples(10))
+@given(
+    case=wings(max_stations=30),
+    alpha=alphas,
+    speeds=st.lists(ratios, min_size=1, max_size=6),
+)
+def test_a_physically_valid_sweep_answers_every_point(
+    api_schema: schemathesis.BaseSchema, vm_server: Server, case, alpha, speeds
+) -> None:
+    density = ISA_SEA_LEVEL_DENSITY
+    velocities = [speed_for(case.wing, ratio, density) for ratio in speeds]
+    body = {"wing": case.json(), "flight": {"alpha": alpha}, "velocities": velocities}
+    request = api_schema["/sweep"]["POST"].Case(body=body)
+    response = request.call_and_validate(
+        base_url=vm_server.base_url, checks=CHECKS, timeout=REQUEST_TIMEOUT
+    )
+    calls["POST /sweep (physical)"] += 1
+    assert response.status_code == 200, response.text
+    points = response.json()["points"]
+    assert [p["velocity"] for p in points] == velocities
+    for point in points:
+        assert (point["equilibrium"] is None) == (point["status"] != "equilibrium"), point
 
 
 def test_enough_cases_were_generated() -> None:
@@ -88,3 +197,25 @@ def test_enough_cases_were_generated() -> None:
     for label in ("POST /solve", "POST /sweep"):
         assert calls[label] >= fuzz_examples(CASES_PER_BODY_OPERATION), dict(calls)
     assert sum(calls.values()) >= 2 * fuzz_examples(CASES_PER_BODY_OPERATION), dict(calls)
+    print("\nschema fuzzing, responses:", dict(sorted(statuses.items())))
+
+
+# ------------------------------------------------------------------ cases found by fuzzing
+
+
+@pytest.mark.parametrize("path", ["/solve", "/sweep"])
+def test_a_body_that_is_not_utf8_is_invalid_input(
+    api_schema: schemathesis.BaseSchema, server: Server, path: str
+) -> None:
+    """Found by this fuzzing before commit ccb0876: the single byte 0xff as a body got 400
+    /problems/http-error, a status the document does not list for /solve and /sweep."""
+    response = httpx.post(
+        server.base_url + path,
+        content=b"\xff",
+        headers={"content-type": "application/json"},
+        timeout=REQUEST_TIMEOUT,
+    )
+    assert response.status_code == 422
+    assert response.headers["content-type"] == "application/problem+json"
+    assert response.json()["type"] == "/problems/invalid-input"
+    assert "422" in api_schema[path]["POST"].responses.status_codes

@@ -1,0 +1,38 @@
+"""Hypothesis profiles for every property-based test (solver fuzzing, schema fuzzing).
+
+HYPOTHESIS_PROFILE selects one:
+    ci (default)  bounded example counts, derandomized: the same cases on every run, so a red CI
+                  means the code changed, not the dice.
+    nightly       random and about 20x more examples (see benchmarks/ for the figures).
+Tests scale their own `max_examples` with `fuzz_examples`.
+"""
+
+from __future__ import annotations
+
+import os
+
+from hypothesis import HealthCheck, settings
+
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "ci")
+
+settings.register_profile(
+    "ci",
+    deadline=None,  # solve times vary with N and VM-vs-compiled; tests guard hangs themselves
+    derandomize=True,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "nightly",
+    deadline=None,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.load_profile(PROFILE)
+
+_SCALE = {"ci": 1, "nightly": 20}
+
+
+def fuzz_examples(ci: int) -> int:
+    """`ci` examples under the ci profile, proportionally more under the longer ones."""
+    return ci * _SCALE.get(PROFILE, 1)

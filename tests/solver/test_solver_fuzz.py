@@ -1,0 +1,267 @@
+"""Solver fuzzing (issue 5, part 2): random but valid wings, speeds below and beyond divergence.
+
+Every generated case must end in one of the solver's documented outcomes:
+
+- an `Equilibrium`: every reported number finite, the residual within the tolerance, the root
+  clamped, at most `max_iterations` Newton steps, and the stability flag consistent with the
+  margin (stable exactly when q is below the local divergence pressure);
+- a `NoEquilibrium` naming a fold below the requested speed (or no fold at all);
+- a `ConvergenceError` after at most `max_iterations` Newton steps.
+
+Anything else escaping the solver (ValueError, IndexError, ...) is a defect, and so is a call
+that does not return within `HANG_SECONDS` (a generous guard against true hangs, not a timing
+requirement: solves here take milliseconds to a few seconds).
+
+Wings and flights come from tests/strategies.py: N = 3..40 stations, semispan 0.3..30 m, taper
+0.1..1, elastic axis at 5..70 % chord, EI and GJ over six decades each with a decade of scatter
+between stations, alpha -15..15 deg, and airspeeds 0.05 to 2.5 times the linear divergence speed
+(1..500 m/s for wings that never diverge).
+
+Models are built without C compilation (CasADi's virtual machine, FLEXWING_COMPILE=0): forty
+mesh sizes would otherwise start forty background gcc runs in this process.
+
+Profiles: HYPOTHESIS_PROFILE=ci (default, bounded, derandomized) or nightly (tests/conftest.py);
+the long run with figures is benchmarks/solver_fuzz_benchmark.py.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import signal
+from collections.abc import Callable, Iterator
+from typing import TypeVar
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import solver
+from solver import (
+    ConvergenceError,
+    Equilibrium,
+    FlightCondition,
+    NoEquilibrium,
+    SolverError,
+    SolverOptions,
+)
+from tests.conftest import fuzz_examples
+from tests.strategies import alphas, densities, ratios, speed_for, wings
+
+HANG_SECONDS = 30.0
+OPTIONS = SolverOptions()
+# Reported arrays over stations and panels, and scalars, that must be finite.
+STATION_FIELDS = ("heave", "slope", "twist", "shear", "bending_moment", "torque")
+PANEL_FIELDS = ("panel_y", "panel_lift", "panel_lift_per_span", "panel_torque")
+SCALAR_FIELDS = (
+    "lift",
+    "induced_drag",
+    "CL",
+    "CDi",
+    "reference_area",
+    "deformed_area",
+    "rigid_lift",
+    "residual_norm",
+)
+
+T = TypeVar("T")
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _virtual_machine_only() -> Iterator[None]:
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("FLEXWING_COMPILE", "0")
+        yield
+
+
+# ------------------------------------------------------------------------------- contract
+
+
+class Hang(Exception):
+    """A solver call ran past HANG_SECONDS."""
+
+
+@contextlib.contextmanager
+def hang_guard(seconds: float = HANG_SECONDS) -> Iterator[None]:
+    """Interrupt the (main-thread) call inside after `seconds` of wall-clock time."""
+
+    def on_alarm(signum: int, frame: object) -> None:
+        raise Hang(f"no outcome within {seconds:g} s")
+
+    previous = signal.signal(signal.SIGALRM, on_alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def outcome(call: Callable[[], T]) -> T | SolverError:
+    """The call's result or its typed solver error; any other exception is a defect."""
+    try:
+        with hang_guard():
+            return call()
+    except SolverError as error:
+        return error
+    except Hang:
+        raise
+    except Exception as error:
+        raise AssertionError(
+            f"untyped {type(error).__name__} escaped the solver: {error}"
+        ) from error
+
+
+def check_equilibrium(eq: Equilibrium, flight: FlightCondition) -> None:
+    n = eq.wing.n_stations
+    for name in STATION_FIELDS:
+        values = getattr(eq, name)
+        assert values.shape == (n,), name
+        assert np.all(np.isfinite(values)), f"{name} has non-finite values: {values}"
+    for name in PANEL_FIELDS:
+        values = getattr(eq, name)
+        assert values.shape == (n - 1,), name
+        assert np.all(np.isfinite(values)), f"{name} has non-finite values: {values}"
+    for name in SCALAR_FIELDS:
+        assert math.isfinite(getattr(eq, name)), f"{name} = {getattr(eq, name)}"
+    if eq.rigid_lift != 0:
+        assert math.isfinite(eq.lift_amplification)
+    assert eq.flight == flight
+    assert eq.iterations <= OPTIONS.max_iterations
+    assert eq.residual_norm <= OPTIONS.tolerance
+    # The root clamps are residual rows: they hold to the tolerance.
+    assert abs(eq.heave[0]) <= OPTIONS.tolerance
+    assert abs(eq.slope[0]) <= OPTIONS.tolerance
+    assert abs(eq.twist[0]) <= OPTIONS.tolerance
+    check_stability(eq)
+
+
+def check_stability(eq: Equilibrium) -> None:
+    s = eq.stability
+    q = eq.dynamic_pressure
+    assert math.isfinite(s.margin) and s.margin >= 0
+    if s.local_divergence_pressure is None:
+        assert s.stable and s.margin == 0
+    else:
+        assert math.isfinite(s.local_divergence_pressure) and s.local_divergence_pressure > 0
+        assert s.stable == (s.local_divergence_pressure > q)
+        assert s.margin == pytest.approx(q / s.local_divergence_pressure, rel=1e-12)
+        # The flag and the margin agree (away from the round-off band at margin = 1).
+        if abs(s.margin - 1) > 1e-12:
+            assert s.stable == (s.margin < 1)
+    if s.divergence_dynamic_pressure is None:
+        assert s.divergence_velocity is None
+    else:
+        assert math.isfinite(s.divergence_dynamic_pressure) and s.divergence_dynamic_pressure > 0
+        assert s.divergence_velocity is not None and math.isfinite(s.divergence_velocity)
+
+
+def check_error(error: SolverError, velocity: float) -> None:
+    assert isinstance(error, NoEquilibrium | ConvergenceError), type(error)
+    if isinstance(error, NoEquilibrium):
+        assert error.velocity == velocity
+        fold = error.fold_velocity
+        assert fold is None or (math.isfinite(fold) and 0 < fold < velocity), fold
+    else:
+        assert error.iterations <= OPTIONS.max_iterations
+        assert error.velocity == velocity
+
+
+def check(result: Equilibrium | SolverError, flight: FlightCondition) -> None:
+    if isinstance(result, Equilibrium):
+        check_equilibrium(result, flight)
+    else:
+        check_error(result, flight.velocity)
+
+
+# --------------------------------------------------------------------------------- tests
+
+
+@settings(max_examples=fuzz_examples(100))
+@given(case=wings(), alpha=alphas, ratio=ratios, density=densities)
+def test_a_cold_solve_ends_in_a_documented_outcome(case, alpha, ratio, density):
+    flight = FlightCondition(speed_for(case.wing, ratio, density), alpha, density)
+    check(outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS)), flight)
+
+
+@settings(max_examples=fuzz_examples(40))
+@given(case=wings(), alpha=alphas, first=ratios, second=ratios)
+def test_a_solve_warm_started_from_another_speed_ends_in_a_documented_outcome(
+    case, alpha, first, second
+):
+    """The service's path: start Newton from a stored equilibrium of the same wing."""
+    density = solver.wing.ISA_SEA_LEVEL_DENSITY
+    start_flight = FlightCondition(speed_for(case.wing, first, density), alpha, density)
+    start = outcome(lambda: solver.solve(case.wing, start_flight, options=OPTIONS))
+    check(start, start_flight)
+    if not isinstance(start, Equilibrium):
+        return
+    flight = FlightCondition(speed_for(case.wing, second, density), alpha, density)
+    warm = outcome(lambda: solver.solve(case.wing, flight, start, OPTIONS))
+    check(warm, flight)
+    if isinstance(warm, Equilibrium):
+        assert warm.warm_start
+
+
+@settings(max_examples=fuzz_examples(20))
+@given(
+    case=wings(max_stations=30),
+    alpha=alphas,
+    speeds=st.lists(ratios, min_size=1, max_size=6),
+)
+def test_a_sweep_answers_every_speed_in_order(case, alpha, speeds):
+    density = solver.wing.ISA_SEA_LEVEL_DENSITY
+    velocities = [speed_for(case.wing, ratio, density) for ratio in speeds]
+    result = outcome(lambda: solver.sweep(case.wing, velocities, alpha, density, OPTIONS))
+    assert not isinstance(result, SolverError), f"sweep raised {result!r}"
+    assert [point.velocity for point in result.points] == velocities
+    for point in result.points:
+        flight = FlightCondition(point.velocity, alpha, density)
+        assert (point.equilibrium is None) != (point.error is None)
+        check(point.equilibrium if point.equilibrium is not None else point.error, flight)
+    divergence = result.divergence
+    for value in (
+        divergence.linear.dynamic_pressure,
+        divergence.linear.velocity,
+        divergence.fold.velocity,
+        divergence.fold.dynamic_pressure,
+    ):
+        assert value is None or (math.isfinite(value) and value > 0), divergence
+    # The fit may extrapolate to a negative q (documented, with a reason), never to NaN.
+    fit = divergence.fit
+    assert fit.dynamic_pressure is None or math.isfinite(fit.dynamic_pressure), fit
+    assert math.isfinite(divergence.fold.searched_to_velocity)
+
+
+# ------------------------------------------------------------------ cases found by fuzzing
+
+
+def _study_wing() -> solver.Wing:
+    n = 30
+    chord = np.sqrt(np.linspace(2, 0.02, n))
+    return solver.Wing.create(np.linspace(0, 5, n), chord, 0.4, 2e4 * chord**3, 1e3 * chord**3)
+
+
+@pytest.mark.parametrize("velocity", [5.0, 30.0, 300.0], ids=["5mps", "30mps", "300mps"])
+def test_a_soft_wing_that_never_diverges_linearly_gets_a_typed_answer(velocity):
+    """Found by fuzzing before commit 8c26d18: the fold search of this wing (elastic axis ahead
+    of the quarter chord, so no linear divergence, GJ = 0.1 N m^2) stepped to negative q and
+    `solve` raised ValueError('math domain error') at 30 m/s. Its branch folds at 3.75 m/s."""
+    wing = solver.Wing.create([0.0, 5.0, 10.0], [0.25] * 3, 0.2, 20.0, 0.1)
+    flight = FlightCondition(velocity=velocity, alpha=1.0)
+    result = outcome(lambda: solver.solve(wing, flight))
+    check(result, flight)
+    assert isinstance(result, NoEquilibrium)
+    assert result.fold_velocity == pytest.approx(3.753, abs=1e-3)
+
+
+@pytest.mark.parametrize("alpha", [1e-9, -1e-9], ids=["plus_1e-9_deg", "minus_1e-9_deg"])
+def test_the_divergence_fit_of_a_sweep_at_a_tiny_alpha_is_finite_or_absent(alpha):
+    """Found by fuzzing before commit bec1fac: at |alpha| ~ 1e-9 the equilibria converge at the
+    unloaded jig (its residual is already below 1e-10) with lift 0 but rigid_lift != 0, so
+    1/A = inf and the fit returned slope, intercept and q_div = NaN."""
+    result = solver.sweep(_study_wing(), [6.0, 10.0], alpha, 1.225)
+    fit = result.divergence.fit
+    for value in (fit.slope, fit.intercept, fit.dynamic_pressure):
+        assert value is None or math.isfinite(value), fit
