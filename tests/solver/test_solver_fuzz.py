@@ -3,8 +3,9 @@
 Every generated case must end in one of the solver's documented outcomes:
 
 - an `Equilibrium`: every reported number finite, the residual within the tolerance, the root
-  clamped, at most `max_iterations` Newton steps, and the stability flag consistent with the
-  margin (stable exactly when q is below the local divergence pressure);
+  clamped, at most two Newton runs of `max_iterations` steps (the caller's start, then the
+  branch's), and the stability flag consistent with the margin (stable exactly when q is below
+  the local divergence pressure);
 - a `NoEquilibrium` naming a fold below the requested speed (or no fold at all);
 - a `ConvergenceError` after at most `max_iterations` Newton steps.
 
@@ -128,7 +129,9 @@ def check_equilibrium(eq: Equilibrium, flight: FlightCondition) -> None:
     if eq.rigid_lift != 0:
         assert math.isfinite(eq.lift_amplification)
     assert eq.flight == flight
-    assert eq.iterations <= OPTIONS.max_iterations
+    # Newton from the caller's start, then at most once more from the branch (solver.recovery):
+    # the reported count covers both attempts.
+    assert eq.iterations <= 2 * OPTIONS.max_iterations
     assert eq.residual_norm <= OPTIONS.tolerance
     # The root clamps are residual rows: they hold to the tolerance.
     assert abs(eq.heave[0]) <= OPTIONS.tolerance
