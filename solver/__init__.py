@@ -3,7 +3,15 @@
 A vortex lattice (one chordwise panel per strip) and a cantilever beam share the heave and twist
 unknowns; the coupled equations are solved as one nonlinear system by Newton's method on an exact
 CasADi Jacobian, compiled once per mesh size. See the design study in shared/seed/.
+
+Importing the package before numpy sets OPENBLAS_NUM_THREADS=1 unless it is already set: the
+solver's dense systems are small (119 x 119 at N = 30), and threaded OpenBLAS on a shared machine
+makes them 100x slower (measured: 0.3 ms single-threaded, up to 460 ms threaded during a compile).
 """
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from solver.divergence import (
     DivergenceSummary,

@@ -16,6 +16,7 @@ Environment:
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import fcntl
 import logging
@@ -154,10 +155,16 @@ def _symbolic_functions(n: int) -> _Functions:
     return build_coupled_function(n), build_residual_function(n), build_panel_loads_function(n)
 
 
-def _compile_library(n: int, functions: _Functions | None, wait: bool = False) -> Path | None:
+def _compile_library(
+    n: int,
+    functions: _Functions | None,
+    wait: bool = False,
+    launched: threading.Event | None = None,
+) -> Path | None:
     """Generate and compile the C library for N.
 
     If another process is compiling it, return None at once, or with `wait` block until it has.
+    `launched` is set once the detached compiler runs.
     """
     library = _library_path(n)
     if library.exists():
@@ -173,28 +180,55 @@ def _compile_library(n: int, functions: _Functions | None, wait: bool = False) -
             return library
         if functions is None:
             functions = _symbolic_functions(n)
-        with tempfile.TemporaryDirectory(dir=library.parent) as work:
-            source = Path(work) / f"flexwing_{n}.c"
-            generator = ca.CodeGenerator(source.name, {"with_header": False})
-            for function in functions:
-                generator.add(function)
-            generator.generate(work + os.sep)
-            built = Path(work) / "lib.so"
-            subprocess.run(
-                [_compiler(), _OPTIMISATION, "-fPIC", "-shared", str(source), "-o", str(built)],
-                check=True,
-                capture_output=True,
-            )
-            os.replace(built, library)  # atomic: readers never see a half-written library
+        work = Path(tempfile.mkdtemp(prefix="build-", dir=library.parent))
+        source = work / f"flexwing_{n}.c"
+        generator = ca.CodeGenerator(source.name, {"with_header": False})
+        for function in functions:
+            generator.add(function)
+        generator.generate(str(work) + os.sep)
+        # The compiler runs in its own session and the shell finishes the job (atomic rename,
+        # clean-up) even if this process exits first: a short-lived process still leaves the
+        # library for the next one instead of a half-built directory.
+        script = (
+            f'"$0" {_OPTIMISATION} -fPIC -shared "$1" -o "$2/lib.so" '
+            '&& mv -f "$2/lib.so" "$3"; status=$?; rm -rf "$2"; exit $status'
+        )
+        compiler = subprocess.Popen(
+            ["sh", "-c", script, _compiler(), str(source), str(work), str(library)],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            start_new_session=True,
+        )
+        if launched is not None:
+            launched.set()
+        stdout, stderr = compiler.communicate()
+        if compiler.returncode != 0 or not library.exists():
+            raise subprocess.CalledProcessError(compiler.returncode, _compiler(), stdout, stderr)
     return library
 
 
-def _background_compile(model: CompiledModel, functions: _Functions) -> None:
+# Interpreter exit waits until each background compile has handed its work to the detached
+# compiler (code generation takes a fraction of a second), never for the compile itself.
+_handoffs: list[threading.Event] = []
+_HANDOFF_WAIT = 60.0  # [s]
+
+
+@atexit.register
+def _wait_for_handoffs() -> None:
+    for launched in list(_handoffs):
+        launched.wait(_HANDOFF_WAIT)
+
+
+def _background_compile(
+    model: CompiledModel, functions: _Functions, launched: threading.Event
+) -> None:
     try:
-        library = _compile_library(model.n, functions)
+        library = _compile_library(model.n, functions, launched=launched)
     except (OSError, subprocess.CalledProcessError) as error:
         log.warning("compiling the N=%d model failed, staying on the VM: %s", model.n, error)
         return
+    finally:
+        launched.set()  # nothing (more) to hand off
     if library is not None:
         model._use_library(library)
         log.info("N=%d model now runs compiled code from %s", model.n, library)
@@ -220,9 +254,11 @@ def model_for(n: int) -> CompiledModel:
             with contextlib.suppress(OSError, RuntimeError):
                 model._use_library(library)
         if not model.compiled and _compilation_enabled():
+            launched = threading.Event()
+            _handoffs.append(launched)
             thread = threading.Thread(
                 target=_background_compile,
-                args=(model, functions),
+                args=(model, functions, launched),
                 daemon=True,
                 name=f"flexwing-compile-{n}",
             )

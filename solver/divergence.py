@@ -35,6 +35,7 @@ __all__ = [
     "find_fold",
     "equilibrium_branch",
     "clear_branch_cache",
+    "known_fold_pressure",
     "search_velocity_limit",
     "divergence_summary",
 ]
@@ -223,6 +224,17 @@ def equilibrium_branch(wing: Wing, alpha: float, q_limit: float) -> Branch:
         while len(_branches) > _CACHE_SIZE:
             _branches.popitem(last=False)
     return branch
+
+
+def known_fold_pressure(wing: Wing, alpha: float) -> float | None:
+    """[Pa] the fold's dynamic pressure if a cached branch has already found it, else None.
+
+    Never traces: `solve` uses it to answer a request beyond a known fold without Newton.
+    """
+    with _branches_lock:
+        cached = _branches.get(wing.parameters(alpha).tobytes())
+    fold = None if cached is None else cached.fold
+    return None if fold is None else fold.dynamic_pressure
 
 
 def clear_branch_cache() -> None:

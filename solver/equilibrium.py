@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from solver.compiled import CompiledModel, Evaluation, model_for
-from solver.errors import ConvergenceError
+from solver.errors import ConvergenceError, NoEquilibrium
 from solver.newton import newton
 from solver.stability import divergence_pressure
 from solver.wing import FlightCondition, Wing
@@ -27,7 +27,9 @@ class SolverOptions:
     """Newton settings.
 
     tolerance: max-norm of the residual at convergence (units in `solver.model`).
-    max_iterations: Newton iterations before giving up.
+    max_iterations: Newton iterations of one attempt before giving up. A failed attempt below
+        the fold is retried once from the branch from the jig, so a solve runs at most twice
+        this many; `Equilibrium.iterations` counts them all.
     find_fold: also locate the fold of the branch from the jig shape (`Equilibrium.fold`).
     """
 
@@ -301,6 +303,28 @@ def _initial_point(
     return guess.copy(), None, True
 
 
+def _refuse_beyond_known_fold(
+    wing: Wing, flight: FlightCondition, initial_guess: Equilibrium | np.ndarray | None
+) -> None:
+    """NoEquilibrium at once past a fold already traced for this wing and alpha.
+
+    Only for starts on the jig's branch (none, or a stable equilibrium): a start the caller chose
+    elsewhere may reach another branch's (unstable) equilibrium, which `solver.recovery` returns
+    flagged. Without a cached fold, Newton runs first and the recovery path decides.
+    """
+    if isinstance(initial_guess, np.ndarray) or (
+        isinstance(initial_guess, Equilibrium) and not initial_guess.stability.stable
+    ):
+        return
+    from solver.divergence import known_fold_pressure  # it builds on this module
+
+    fold_pressure = known_fold_pressure(wing, flight.alpha)
+    if fold_pressure is not None and flight.dynamic_pressure > fold_pressure:
+        raise NoEquilibrium(
+            flight.velocity, FlightCondition.velocity_for(fold_pressure, flight.density)
+        )
+
+
 def solve(
     wing: Wing,
     flight: FlightCondition,
@@ -318,6 +342,7 @@ def solve(
     """
     started = time.perf_counter()
     options = options or SolverOptions()
+    _refuse_beyond_known_fold(wing, flight, initial_guess)
     model = model_for(wing.n_stations)
     p = wing.parameters(flight.alpha)
     x0, evaluation0, warm = _initial_point(wing, flight, initial_guess)

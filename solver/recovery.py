@@ -55,7 +55,10 @@ def settle(
         return _with_fold(equilibrium, fold)  # the caller's own start: flagged, not replaced
     if fold.velocity is not None and flight.velocity > fold.velocity:
         raise NoEquilibrium(flight.velocity, fold.velocity)
-    retried = _from_branch(wing, flight, options, started)
+    attempt = equilibrium if equilibrium is not None else failure
+    assert attempt is not None  # Newton either converged or failed
+    first_attempt = attempt.iterations
+    retried = _from_branch(wing, flight, options, started, first_attempt)
     if retried is not None and retried.stability.stable:
         return _with_fold(retried, fold)
     if equilibrium is not None:
@@ -74,9 +77,17 @@ def _with_fold(equilibrium: Equilibrium, fold: Fold | None) -> Equilibrium:
 
 
 def _from_branch(
-    wing: Wing, flight: FlightCondition, options: SolverOptions, started: float
+    wing: Wing,
+    flight: FlightCondition,
+    options: SolverOptions,
+    started: float,
+    prior_iterations: int,
 ) -> Equilibrium | None:
-    """Newton from the continuation's state nearest in q, or None if it does not converge."""
+    """Newton from the continuation's state nearest in q, or None if it does not converge.
+
+    The equilibrium reports the Newton iterations of both attempts; it is a warm start (from a
+    traced branch state), whatever the caller's first start was.
+    """
     q = flight.dynamic_pressure
     limit = search_velocity_limit(wing, flight.density, flight.velocity)
     branch = equilibrium_branch(wing, flight.alpha, 0.5 * flight.density * limit**2)
@@ -97,7 +108,7 @@ def _from_branch(
         flight,
         result.x,
         result.evaluation,
-        iterations=result.iterations,
+        iterations=prior_iterations + result.iterations,
         residual_norm=result.residual_norm,
         warm_start=True,
         started=started,

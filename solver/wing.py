@@ -29,8 +29,26 @@ class InvalidInput(ValueError):
         self.reason = reason
 
 
+def _is_number(value: object) -> bool:
+    """A real number: bool (a Python int) and strings are not."""
+    return isinstance(value, int | float | np.integer | np.floating) and not isinstance(
+        value, bool | np.bool_
+    )
+
+
 def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
-    array = np.asarray(values, dtype=float)
+    if isinstance(values, np.ndarray):
+        if not np.issubdtype(values.dtype, np.integer) and not np.issubdtype(
+            values.dtype, np.floating
+        ):
+            raise InvalidInput(name, "must contain only numbers")
+        array = values.astype(float)
+    elif _is_number(values):
+        array = np.asarray(float(values))  # type: ignore[arg-type]
+    elif isinstance(values, list | tuple) and all(_is_number(v) for v in values):
+        array = np.asarray(values, dtype=float)
+    else:
+        raise InvalidInput(name, "must be a number or a list of numbers")
     if array.ndim == 0 and n is not None:
         array = np.full(n, float(array))
     if array.ndim != 1:
@@ -90,6 +108,9 @@ class Wing:
         ):
             if not np.all(values > 0):
                 raise InvalidInput(name, "must be positive at every station")
+        if not np.all((elastic_axis_arr >= 0) & (elastic_axis_arr <= 1)):
+            # A fraction of chord from the leading edge: the axis must lie on the section.
+            raise InvalidInput("elastic_axis", "must lie between 0 and 1 (fraction of chord)")
         for array in (y_arr, chord_arr, elastic_axis_arr, ei, gj):
             array.setflags(write=False)
         return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj)
@@ -138,7 +159,10 @@ class FlightCondition:
 
     def __post_init__(self) -> None:
         for name in ("velocity", "alpha", "density"):
-            if not math.isfinite(getattr(self, name)):
+            value = getattr(self, name)
+            if not _is_number(value):
+                raise InvalidInput(name, "must be a number")
+            if not math.isfinite(value):
                 raise InvalidInput(name, "must be a finite number")
         if self.velocity <= 0:
             raise InvalidInput("velocity", "must be positive")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -91,3 +92,20 @@ def test_compilation_can_be_switched_off(
     model = compiled.compile_now(N_SMALL, timeout=5)
     assert not model.compiled
     assert not list(private_cache.glob("*.so"))
+
+
+def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache: Path) -> None:
+    # The first use starts the compile in the background; the process then exits at once.
+    probe = f"from solver import compiled; print(compiled.model_for({N_SMALL}).compiled)"
+    result = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, check=True
+    )
+    assert result.stdout.strip() == "False"
+    deadline = time.monotonic() + 120
+    while not list(private_cache.glob("*.so")) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert len(list(private_cache.glob("*.so"))) == 1
+    # The detached compiler cleans its work directory up after itself.
+    while list(private_cache.glob("build-*")) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert not list(private_cache.glob("build-*"))

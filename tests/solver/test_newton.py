@@ -106,7 +106,9 @@ def test_only_converged_states_are_returned(wing, velocity: float, max_iteration
         e = solver.solve(wing, flight(velocity), options=options)
     except solver.SolverError:
         return
-    assert e.iterations <= max_iterations
+    # The budget bounds each Newton run: the caller's start, then at most one retry from the
+    # branch from the jig (solver.recovery); `iterations` reports both.
+    assert e.iterations <= 2 * max_iterations
     assert e.residual_norm <= options.tolerance
     assert residual_norm_at(e) <= options.tolerance
 
