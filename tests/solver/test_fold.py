@@ -176,6 +176,18 @@ def test_no_equilibrium_beyond_the_fold(case, factor):
     assert point.equilibrium is None and isinstance(point.error, NoEquilibrium)
 
 
+def test_a_known_fold_answers_beyond_it_without_newton(case, monkeypatch):
+    wing, alpha, fold, _ = case  # the fixture traced the branch: its fold is cached
+    model = model_for(wing.n_stations)
+    evaluations = []
+    monkeypatch.setattr(model, "evaluate", lambda *args: evaluations.append(args))
+    monkeypatch.setattr(model, "residual", lambda *args: evaluations.append(args))
+    with pytest.raises(NoEquilibrium) as raised:
+        solve(wing, FlightCondition(1.01 * fold.velocity, alpha, RHO))
+    assert raised.value.fold_velocity == pytest.approx(fold.velocity, rel=1e-12)
+    assert evaluations == []
+
+
 def test_rect_public_sweep_past_the_fold_is_not_answered_plainly():
     result = sweep(rect_public(), [10, 20, 25], 4.0, RHO)
     below, *beyond = result.points
