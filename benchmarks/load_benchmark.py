@@ -45,7 +45,7 @@ from urllib.parse import urlsplit
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-__all__ = ["PhaseResult", "Sample", "local_server", "run_phase"]
+__all__ = ["PhaseResult", "Sample", "local_server", "local_server_process", "run_phase"]
 
 import httpx
 import numpy as np
@@ -226,7 +226,16 @@ async def run_phase(
 
 @contextlib.contextmanager
 def local_server(env: dict[str, str] | None = None) -> Iterator[str]:
-    """`uvicorn app.main:app` on a free loopback port until the block ends."""
+    """`uvicorn app.main:app` on a free loopback port until the block ends: its base URL."""
+    with local_server_process(env) as (base_url, _):
+        yield base_url
+
+
+@contextlib.contextmanager
+def local_server_process(
+    env: dict[str, str] | None = None,
+) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
+    """`uvicorn app.main:app` on a free loopback port until the block ends: URL and process."""
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
@@ -250,7 +259,7 @@ def local_server(env: dict[str, str] | None = None) -> Iterator[str]:
             time.sleep(0.1)
         else:
             raise TimeoutError("the server did not become ready")
-        yield base
+        yield base, process
     finally:
         process.send_signal(signal.SIGINT)
         try:
