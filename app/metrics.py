@@ -84,6 +84,9 @@ class Metrics:
         self.pending = Gauge(
             "flexwing_pending_solves", "Jobs running or waiting for a worker.", registry=r
         )
+        self.running = Gauge(
+            "flexwing_running_jobs", "Jobs running in local workers now.", registry=r
+        )
         self.ready = Gauge("flexwing_ready", "1 when the worker pool is warm.", registry=r)
 
 

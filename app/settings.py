@@ -57,6 +57,15 @@ class Settings(BaseSettings):
     sweep_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /sweep in a worker."
     )
+    jobs_per_worker: int = Field(
+        default=2,
+        ge=1,
+        le=8,
+        description=(
+            "Jobs handed to each worker at once: one running, the rest queued behind it so the "
+            "worker never idles between jobs (a time budget counts only the run)."
+        ),
+    )
     max_pending: int = Field(
         default=64,
         ge=1,

@@ -14,8 +14,9 @@ import logging
 import math
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, TypeVar
 
 import numpy as np
 
@@ -43,10 +44,12 @@ __all__ = [
     "initialize",
     "run_solve",
     "run_sweep",
+    "run_timed",
     "warm",
 ]
 
 Payload = dict[str, Any]
+T = TypeVar("T")
 
 log = logging.getLogger(__name__)
 
@@ -108,11 +111,21 @@ class WarmReport:
 # ------------------------------------------------------------------------- process lifetime
 
 
-def initialize(warm_stations: tuple[int, ...], timeout: float) -> None:
+# The local pool's shared arrays, by dispatch slot: job start time (time.monotonic()) and pid.
+_starts: Any = None
+_pids: Any = None
+
+
+def initialize(
+    warm_stations: tuple[int, ...], timeout: float, starts: Any = None, pids: Any = None
+) -> None:
     """Pool initializer: compile or load the solver functions of the common mesh sizes.
 
     Never raises: a worker whose compilation failed still serves from CasADi's virtual machine.
     """
+    global _starts, _pids
+    if starts is not None:
+        _starts, _pids = starts, pids
     for n in warm_stations:
         try:
             compile_now(n, timeout)
@@ -127,6 +140,14 @@ def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
     """
     initialize(warm_stations, timeout)
     return WarmReport(os.getpid(), {n: model_for(n).compiled for n in warm_stations})
+
+
+def run_timed(slot: int | None, fn: Callable[[Any], T], job: Any) -> T:
+    """Run `fn(job)`, first noting its start in the pool's shared clock (its time budget)."""
+    if slot is not None and _starts is not None:
+        _pids[slot] = os.getpid()
+        _starts[slot] = time.monotonic()
+    return fn(job)
 
 
 # ------------------------------------------------------------------------------- conversion

@@ -31,7 +31,7 @@ import statistics
 import subprocess
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -111,56 +111,59 @@ def solve_body(wing: dict[str, Any], velocity: float) -> bytes:
     return json.dumps({"wing": wing, "flight": {"velocity": velocity, "alpha": 5.0}}).encode()
 
 
-def time_requests(send: Callable[[], httpx.Response], count: int) -> list[float]:
+def time_posts(client: httpx.Client, path: str, bodies: list[bytes]) -> list[float]:
+    """Wall time of each POST (bodies are built beforehand, outside the timing)."""
+    headers = {"content-type": "application/json"}
     times = []
-    for _ in range(count):
+    for body in bodies:
         started = time.perf_counter()
-        response = send()
+        response = client.post(path, content=body, headers=headers)
         times.append(time.perf_counter() - started)
         if response.status_code != 200:
             raise RuntimeError(f"{response.status_code}: {response.text}")
     return times
 
 
-def http_latency(base: str, count: int) -> dict[str, list[float]]:
+def pool_seconds(client: httpx.Client, kind: str) -> tuple[float, int]:
+    """Sum and count of the server's job times in workers (dispatch to result), from /metrics."""
+    total, count = 0.0, 0
+    for line in client.get("/metrics").text.splitlines():
+        if line.startswith(f'flexwing_solve_duration_seconds_sum{{kind="{kind}"}}'):
+            total = float(line.split()[-1])
+        if line.startswith(f'flexwing_solve_duration_seconds_count{{kind="{kind}"}}'):
+            count = int(float(line.split()[-1]))
+    return total, count
+
+
+def sweep_body(wing: dict[str, Any], density: float = 1.225) -> bytes:
+    body = {"wing": wing, "flight": {"alpha": 5.0, "density": density}, "velocities": SWEEP}
+    return json.dumps(body).encode()
+
+
+def http_latency(base: str, count: int) -> tuple[dict[str, list[float]], float]:
+    """Sequential latencies, and the mean time of a /solve job in the pool [s]."""
     wing = study_wing()
-    headers = {"content-type": "application/json"}
     velocities = distinct_velocities(1)
     out: dict[str, list[float]] = {}
     with httpx.Client(base_url=base, timeout=60) as client:
-        # Prime the state cache (one stored equilibrium) and the connection.
-        client.post("/solve", content=solve_body(wing, 10.0), headers=headers)
-        out["solve"] = time_requests(
-            lambda: client.post(
-                "/solve", content=solve_body(wing, next(velocities)), headers=headers
-            ),
-            count,
+        # Prime the connection and the state cache (one stored equilibrium).
+        time_posts(client, "/solve", [solve_body(wing, 10.0)])
+        before = pool_seconds(client, "solve")
+        out["solve"] = time_posts(
+            client, "/solve", [solve_body(wing, next(velocities)) for _ in range(count)]
         )
-        cached = solve_body(wing, 10.0)
-        out["cached"] = time_requests(
-            lambda: client.post("/solve", content=cached, headers=headers), count
-        )
-        n = iter(range(1, 10**9))
-
-        def sweep_seen() -> httpx.Response:
-            density = 1.225 * (1 + 1e-12 * next(n))
-            body = {"wing": wing, "flight": {"alpha": 5.0, "density": density}, "velocities": SWEEP}
-            return client.post("/sweep", json=body)
-
-        sweep_seen()  # each worker traces the branch once
-        sweep_seen()
-        out["sweep_seen"] = time_requests(sweep_seen, max(count // 10, 20))
-
-        def sweep_new() -> httpx.Response:
-            body = {
-                "wing": study_wing(1 + 1e-9 * next(n)),
-                "flight": {"alpha": 5.0},
-                "velocities": SWEEP,
-            }
-            return client.post("/sweep", json=body)
-
-        out["sweep_new"] = time_requests(sweep_new, max(count // 20, 10))
-    return out
+        after = pool_seconds(client, "solve")
+        pool_mean = (after[0] - before[0]) / (after[1] - before[1])
+        out["cached"] = time_posts(client, "/solve", [solve_body(wing, 10.0)] * count)
+        sweeps = max(count // 10, 20)
+        # The density varies by 1e-12 so the result cache misses; each worker has traced the
+        # branch of this wing (the first two sweeps), which the solver caches per wing and alpha.
+        seen = [sweep_body(wing, 1.225 * (1 + 1e-12 * i)) for i in range(sweeps + 2)]
+        time_posts(client, "/sweep", seen[:2])
+        out["sweep_seen"] = time_posts(client, "/sweep", seen[2:])
+        new = [sweep_body(study_wing(1 + 1e-9 * (i + 1))) for i in range(max(count // 20, 10))]
+        out["sweep_new"] = time_posts(client, "/sweep", new)
+    return out, pool_mean
 
 
 class RawClient:
@@ -296,7 +299,7 @@ def main() -> None:
     print(f"machine: {os.cpu_count()} CPUs; study's wing, N = 30, alpha 5 deg")
     bare = bare_solver(args.requests // 2)
     with server(args.url) as base:
-        http = http_latency(base, args.requests)
+        http, pool_mean = http_latency(base, args.requests)
         loads = {
             kind: asyncio.run(throughput(base, args.clients, args.seconds, kind))
             for kind in ("httpx", "raw")
@@ -318,6 +321,13 @@ def main() -> None:
     row("solve, cold (from the jig)", bare["solve_cold"])
     row("sweep 6 speeds, wing seen", bare["sweep_seen"])
     row("sweep 6 speeds, new wing", bare["sweep_new"])
+    print("where a sequential /solve spends its time (medians, means):")
+    http_p50 = statistics.median(http["solve"])
+    bare_p50 = statistics.median(bare["solve_warm"])
+    web = http_p50 - pool_mean
+    print(f"  whole request {ms(http_p50)}: job in the worker pool {ms(pool_mean)} (mean),")
+    print(f"  of which the solver {ms(bare_p50)}; HTTP + validation + JSON {ms(web)},")
+    print(f"  dispatch to the process and back {ms(pool_mean - bare_p50)}")
     print("web-layer overhead (HTTP p50 minus bare p50):")
     for name, bare_name in (("solve", "solve_warm"), ("sweep_seen", "sweep_seen")):
         overhead = statistics.median(http[name]) - statistics.median(bare[bare_name])

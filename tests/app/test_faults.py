@@ -50,6 +50,15 @@ def _kill(pids: list[int]) -> None:
         os.kill(pid, signal.SIGKILL)
 
 
+def _wait_running(server: Server, count: int) -> None:
+    """Wait until `count` jobs run in workers (a job killed while queued is resubmitted for
+    free: these tests kill running ones)."""
+    deadline = time.monotonic() + 60
+    while server.metric("flexwing_running_jobs") < count:
+        assert time.monotonic() < deadline, "no job started"
+        time.sleep(0.01)
+
+
 def _small_solve_works(server: Server) -> None:
     with server.client() as client:
         response = client.post("/solve", json=study.solve_request(9.0 + time.time() % 1))
@@ -61,7 +70,7 @@ def test_killed_worker_is_replaced_and_its_request_retried(fault_server: Server)
     died = fault_server.metric("flexwing_worker_restarts_total", reason="died")
     with ThreadPoolExecutor(1) as pool:
         future = pool.submit(_post_big, fault_server, 10.0)
-        _wait_pending(fault_server, 1)
+        _wait_running(fault_server, 1)
         _kill(pids)
         response = future.result()
     assert response.status_code == 200, response.text  # retried once on the new pool
@@ -75,9 +84,11 @@ def test_a_request_whose_workers_die_twice_gets_503(fault_server: Server) -> Non
     pids = fault_server.wait_ready()
     with ThreadPoolExecutor(1) as pool:
         future = pool.submit(_post_big, fault_server, 11.0)
-        _wait_pending(fault_server, 1)
+        _wait_running(fault_server, 1)
         _kill(pids)
-        _kill(fault_server.wait_ready(exclude_pids=frozenset(pids)))  # kills the retry too
+        new_pids = fault_server.wait_ready(exclude_pids=frozenset(pids))
+        _wait_running(fault_server, 1)  # the retry
+        _kill(new_pids)
         response = future.result()
     assert response.status_code == 503
     assert response.headers["content-type"] == "application/problem+json"

@@ -93,9 +93,10 @@ def test_repeated_request_is_answered_from_the_cache(client: httpx.Client) -> No
 
 
 def test_warm_start_cuts_iterations_on_a_repeated_wing(client: httpx.Client) -> None:
-    # Two wings that differ by 1e-12 in stiffness: the same physics, different fingerprints.
-    cold_wing = study.wing(stiffness_scale=1 + 1e-12)
-    warm_wing = study.wing(stiffness_scale=1 - 1e-12)
+    # Two wings 1e-11 apart in stiffness (a range no other test uses): the same physics,
+    # different fingerprints.
+    cold_wing = study.wing(stiffness_scale=1 - 1e-11)
+    warm_wing = study.wing(stiffness_scale=1 - 2e-11)
     flight = {"alpha": 5.0, "density": study.DENSITY}
     cold = _solve(client, {"wing": cold_wing, "flight": flight | {"velocity": 20.5}})
     _solve(client, {"wing": warm_wing, "flight": flight | {"velocity": 20.0}})
@@ -109,7 +110,7 @@ def test_warm_start_cuts_iterations_on_a_repeated_wing(client: httpx.Client) -> 
 def test_a_warm_start_does_not_change_the_answer_past_the_fold(client: httpx.Client) -> None:
     """From a stored 21 m/s state Newton can land on the unstable nose-down branch at 22 m/s;
     the service must still say what a cold solve says: no equilibrium."""
-    wing = study.wing(stiffness_scale=1 + 2e-12)
+    wing = study.wing(stiffness_scale=1 - 3e-11)
     flight = {"alpha": 5.0, "density": study.DENSITY}
     _solve(client, {"wing": wing, "flight": flight | {"velocity": 21.0}})
     response = client.post("/solve", json={"wing": wing, "flight": flight | {"velocity": 22.0}})
