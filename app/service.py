@@ -15,7 +15,7 @@ from app import worker
 from app.cache import ResultCache, StateCache, fingerprint
 from app.inputs import solve_input, sweep_input
 from app.metrics import Metrics
-from app.pool import NotReady, Overloaded, PoolError, SolveTimeout, WorkerLost, WorkerPool
+from app.pool import NotReady, Overloaded, SolveTimeout, WorkerLost, WorkerPool
 from app.problems import Problem
 from app.schemas import SolveRequest, SweepRequest
 from app.settings import Settings
@@ -74,8 +74,6 @@ class Service:
         except SolveTimeout as error:
             budget = {"timeout": error.timeout}
             raise Problem("solve-timeout", str(error), extensions=budget) from None
-        except PoolError as error:  # pragma: no cover - every subclass is handled above
-            raise Problem("worker-lost", str(error), headers=retry_after) from None
         self.metrics.solve_seconds.labels(kind).observe(time.perf_counter() - started)
         return result
 

@@ -18,6 +18,9 @@ __all__ = ["Settings", "get_settings"]
 
 
 def _cpu_count() -> int:
+    """CPUs this process may run on (its affinity, e.g. a container's cpuset)."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
     return os.cpu_count() or 1
 
 
@@ -27,7 +30,7 @@ class Settings(BaseSettings):
     workers: int = Field(
         default_factory=_cpu_count,
         ge=1,
-        description="Worker processes that run solves (default: the CPU count).",
+        description="Worker processes that run solves (default: the CPUs available).",
     )
     executor: str = Field(
         default="process",

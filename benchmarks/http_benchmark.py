@@ -45,19 +45,17 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from app import schemas  # noqa: E402
+
 SWEEP = [6.0, 10.0, 12.0, 15.0, 18.0, 20.0]
 
 
 def study_wing(stiffness_scale: float = 1.0) -> dict[str, Any]:
-    y = np.linspace(0, 5, 30)
-    chord = np.sqrt(np.linspace(2, 0.02, 30))
-    return {
-        "y": y.tolist(),
-        "chord": chord.tolist(),
-        "elastic_axis": 0.4,
-        "bending_stiffness": (2e4 * chord**3 * stiffness_scale).tolist(),
-        "torsional_stiffness": (1e3 * chord**3 * stiffness_scale).tolist(),
-    }
+    """The design study's wing as /docs sends it (app.schemas), stiffness scaled."""
+    wing = schemas.study_wing()
+    for key in ("bending_stiffness", "torsional_stiffness"):
+        wing[key] = [v * stiffness_scale for v in wing[key]]
+    return wing
 
 
 def percentile(values: list[float], q: float) -> float:
