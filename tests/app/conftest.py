@@ -94,6 +94,7 @@ def _start(tmp: Path, name: str, env: dict[str, str]) -> Iterator[Server]:
             env=full_env,
             stdout=out,
             stderr=subprocess.STDOUT,
+            start_new_session=True,  # its own process group: workers included, see below
         )
     server = Server(f"http://127.0.0.1:{port}", process, log)
     try:
@@ -106,6 +107,9 @@ def _start(tmp: Path, name: str, env: dict[str, str]) -> Iterator[Server]:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+        # Whatever outlived the server (a forkserver and its workers, if it was killed) goes too.
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
 
 
 @pytest.fixture(scope="session")
