@@ -2,19 +2,21 @@
 
     .venv/bin/python benchmarks/load_benchmark.py [--url http://127.0.0.1:PORT]
         [--clients 16 64] [--seconds 60] [--overload-clients 256] [--overload-seconds 20]
-        [--json results.json]
+        [--transport raw|httpx] [--json results.json]
 
 Without --url it starts `uvicorn app.main:app` on a free loopback port with the default settings
 (FLEXWING_WORKERS = CPU count, FLEXWING_MAX_PENDING = 64) and stops it at the end; --url must be
 a loopback address. Everything is bounded: each phase ends after --seconds (or --max-requests),
 every request has a 60 s timeout, and the script stops by itself.
 
-Traffic (asyncio + httpx, one keep-alive connection per client, each client sends its next request
-when the previous one is answered): 80 % /solve, 20 % /sweep of 3-6 speeds, over four N = 30 wings
-(the design study's and three variants: stiffer, elastic axis at 35 %, linear taper) at alpha 3 or
-5 deg, speeds on a 0.01 m/s grid below each wing's fold. Requests repeat by chance (result-cache
-hits) but mostly do not (solves warm-started from the state cache). Every answer must be 200: any
-other status or transport error counts as an error.
+Traffic (asyncio, one keep-alive connection per client; each client sends its next request when
+the previous one is answered; --transport raw, the default, is a minimal HTTP/1.1 client: on this
+2-core machine httpx's own CPU per request starves the server from ~64 clients on): 80 % /solve,
+20 % /sweep of 3-6 speeds, over four N = 30 wings (the design study's and three variants: stiffer,
+elastic axis at 35 %, linear taper) at alpha 3 or 5 deg, speeds on a 0.01 m/s grid below each
+wing's fold. Requests repeat by chance (result-cache hits) but mostly do not (solves warm-started
+from the state cache). Every answer must be 200: any other status or transport error counts as an
+error.
 
 Overload: --overload-clients (4x FLEXWING_MAX_PENDING by default) clients for --overload-seconds.
 Each client honours Retry-After on 503 before sending again. Reported: answered / shed (503
@@ -157,6 +159,87 @@ async def _pending(client: httpx.AsyncClient) -> float:
     return 0.0
 
 
+@dataclass(frozen=True)
+class Answer:
+    status: int
+    headers: dict[str, str]  # lower-case names
+    body: bytes
+
+
+class RawConnection:
+    """A minimal keep-alive HTTP/1.1 client on asyncio streams (Content-Length bodies only, as
+    uvicorn sends them). On a 2-core machine shared with the server, httpx's own CPU cost per
+    request becomes the bottleneck from ~64 clients on; this one costs a fraction of it."""
+
+    def __init__(self, base_url: str) -> None:
+        parts = urlsplit(base_url)
+        self.host, self.port = parts.hostname or "127.0.0.1", parts.port or 80
+        self.streams: tuple[asyncio.StreamReader, asyncio.StreamWriter] | None = None
+
+    async def post(self, path: str, body: bytes) -> Answer:
+        if self.streams is None:
+            self.streams = await asyncio.open_connection(self.host, self.port)
+        reader, writer = self.streams
+        try:
+            writer.write(
+                f"POST {path} HTTP/1.1\r\nHost: {self.host}\r\n"
+                f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n".encode()
+                + body
+            )
+            head = (await reader.readuntil(b"\r\n\r\n")).decode("latin-1").split("\r\n")
+            headers = {
+                name.strip().lower(): value.strip()
+                for name, _, value in (line.partition(":") for line in head[1:] if line)
+            }
+            answer = Answer(
+                int(head[0].split()[1]),
+                headers,
+                await reader.readexactly(int(headers["content-length"])),
+            )
+        except BaseException:
+            await self.close()
+            raise
+        if answer.headers.get("connection", "").lower() == "close":
+            await self.close()
+        return answer
+
+    async def close(self) -> None:
+        if self.streams is not None:
+            self.streams[1].close()
+            self.streams = None
+
+
+class HttpxConnection:
+    def __init__(self, client: httpx.AsyncClient) -> None:
+        self.client = client
+
+    async def post(self, path: str, body: bytes) -> Answer:
+        response = await self.client.post(
+            path, content=body, headers={"content-type": "application/json"}
+        )
+        return Answer(response.status_code, dict(response.headers), response.content)
+
+    async def close(self) -> None:
+        pass
+
+
+TRANSPORT_ERRORS = (httpx.TransportError, OSError, asyncio.IncompleteReadError, ValueError)
+
+
+def _outcome(answer: Answer) -> tuple[str, float | None, bool]:
+    """(outcome, Retry-After if shed, cached) of an answer."""
+    if answer.status == 200:
+        return "200", None, b'"cached":true' in answer.body
+    if (
+        answer.status == 503
+        and answer.headers.get("content-type") == "application/problem+json"
+        and json.loads(answer.body).get("type") == "/problems/overloaded"
+        and "retry-after" in answer.headers
+    ):
+        return "shed", float(answer.headers["retry-after"]), False
+    return str(answer.status), None, False
+
+
 async def run_phase(
     base_url: str,
     name: str,
@@ -166,16 +249,18 @@ async def run_phase(
     seed: int = 0,
     max_requests: int = 1_000_000,
     honour_retry_after: bool = True,
+    transport: str = "raw",
 ) -> PhaseResult:
-    """`clients` concurrent clients for `seconds` (or `max_requests` in all), then stop."""
+    """`clients` concurrent clients for `seconds` (or `max_requests` in all), then stop.
+
+    transport "raw" (`RawConnection`, one per client) or "httpx" (one AsyncClient, one pooled
+    connection per client, so that none idles into the server's keep-alive timeout).
+    """
     result = PhaseResult(name, clients, seconds)
-    # One connection per client: none sits idle in the pool long enough to meet the server's
-    # keep-alive timeout (see the README on ReadError under overload).
     limits = httpx.Limits(max_connections=clients, max_keepalive_connections=clients)
-    headers = {"content-type": "application/json"}
     loop = asyncio.get_running_loop()
     async with (
-        httpx.AsyncClient(base_url=base_url, timeout=REQUEST_TIMEOUT, limits=limits) as client,
+        httpx.AsyncClient(base_url=base_url, timeout=REQUEST_TIMEOUT, limits=limits) as shared,
         httpx.AsyncClient(base_url=base_url, timeout=REQUEST_TIMEOUT) as monitor,
     ):
         started = loop.time()
@@ -183,28 +268,20 @@ async def run_phase(
 
         async def one_client(index: int) -> None:
             rng = random.Random(seed * 100_003 + index)
+            connection = RawConnection(base_url) if transport == "raw" else HttpxConnection(shared)
             while loop.time() < deadline and len(result.samples) < max_requests:
                 kind, path, body = _request(rng)
                 sent = time.perf_counter()
-                retry_after = None
-                cached = False
+                retry_after, cached = None, False
                 try:
-                    response = await client.post(path, content=body, headers=headers)
-                    outcome = str(response.status_code)
-                    if response.status_code == 200:
-                        cached = bool(response.json()["solver"]["cached"])
-                    elif response.status_code == 503 and (
-                        response.headers.get("content-type") == "application/problem+json"
-                        and response.json().get("type") == "/problems/overloaded"
-                        and "retry-after" in response.headers
-                    ):
-                        outcome = "shed"
-                        retry_after = float(response.headers["retry-after"])
-                except httpx.TransportError as error:
+                    answer = await asyncio.wait_for(connection.post(path, body), REQUEST_TIMEOUT)
+                    outcome, retry_after, cached = _outcome(answer)
+                except (*TRANSPORT_ERRORS, TimeoutError) as error:
                     outcome = type(error).__name__
                 result.samples.append(Sample(kind, outcome, time.perf_counter() - sent, cached))
                 if retry_after is not None and honour_retry_after:
                     await asyncio.sleep(min(retry_after, max(0.0, deadline - loop.time())))
+            await connection.close()
 
         async def watch_pending() -> None:
             while loop.time() < deadline:
@@ -295,6 +372,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--overload-clients", type=int, default=256)
     parser.add_argument("--overload-seconds", type=float, default=20.0)
     parser.add_argument("--max-requests", type=int, default=1_000_000)
+    parser.add_argument("--transport", choices=["raw", "httpx"], default="raw")
     parser.add_argument("--json", type=Path, help="write the figures here")
     args = parser.parse_args(argv)
     if args.url and urlsplit(args.url).hostname not in LOOPBACK:
@@ -303,15 +381,21 @@ def main(argv: list[str] | None = None) -> int:
     server = contextlib.nullcontext(args.url) if args.url else local_server()
     summaries = []
     with server as base_url:
-        print(f"server {base_url}, {os.cpu_count()} CPUs, warm-up...")
-        asyncio.run(run_phase(base_url, "warm-up", 4, 5.0, seed=99))
+        print(f"server {base_url}, {os.cpu_count()} CPUs, {args.transport} clients, warm-up...")
+        asyncio.run(run_phase(base_url, "warm-up", 4, 5.0, seed=99, transport=args.transport))
         phases = [("load", n, args.seconds) for n in args.clients]
         if args.overload_clients:
             phases.append(("overload", args.overload_clients, args.overload_seconds))
         for seed, (name, clients, seconds) in enumerate(phases, start=1):
             result = asyncio.run(
                 run_phase(
-                    base_url, name, clients, seconds, seed=seed, max_requests=args.max_requests
+                    base_url,
+                    name,
+                    clients,
+                    seconds,
+                    seed=seed,
+                    max_requests=args.max_requests,
+                    transport=args.transport,
                 )
             )
             summaries.append(result.summary())
