@@ -27,4 +27,6 @@ RUN python -c "from solver.compiled import compile_now; print(compile_now(30).co
 EXPOSE 8000
 HEALTHCHECK --interval=15s --timeout=3s --start-period=60s --retries=3 \
     CMD ["python", "-c", "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/healthz', timeout=3)"]
-CMD ["uvicorn", "app.main:app", "--host", "0.0.0.0", "--port", "8000"]
+# Idle keep-alive connections outlive common client expiries (httpx: 5 s), so a client never
+# reuses a connection the server is closing at the same moment.
+CMD ["uvicorn", "app.main:app", "--host", "0.0.0.0", "--port", "8000", "--timeout-keep-alive", "75"]

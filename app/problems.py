@@ -116,6 +116,10 @@ PROBLEM_TYPES = _types(
 )
 
 
+# A problem lists this many field errors at most: its size stays bounded whatever the request.
+MAX_LISTED_ERRORS = 50
+
+
 @dataclass(frozen=True)
 class FieldError:
     """One bad input: `field` is a dotted path (``wing.chord[3]``), `reason` says what is wrong."""
@@ -145,11 +149,17 @@ class Problem(Exception):
 
     @classmethod
     def invalid(cls, errors: Sequence[FieldError]) -> Problem:
-        fields = ", ".join(sorted({e.field for e in errors}))
+        """At most MAX_LISTED_ERRORS errors are listed; `error_count` gives them all."""
+        listed = errors[:MAX_LISTED_ERRORS]
+        fields = ", ".join(sorted({e.field for e in listed}))
+        more = len(errors) - len(listed)
         return cls(
             "invalid-input",
-            f"{len(errors)} invalid field(s): {fields}",
-            extensions={"errors": [{"field": e.field, "reason": e.reason} for e in errors]},
+            f"{len(errors)} invalid field(s): {fields}" + (f" and {more} more" if more else ""),
+            extensions={
+                "errors": [{"field": e.field, "reason": e.reason} for e in listed],
+                "error_count": len(errors),
+            },
         )
 
 
@@ -169,7 +179,11 @@ class ProblemDetails(BaseModel):
     detail: str = Field(description="What happened in this occurrence.")
     instance: str | None = Field(default=None, description="The request path.")
     errors: list[ProblemFieldError] | None = Field(
-        default=None, description="invalid-input: each bad field and why."
+        default=None,
+        description=f"invalid-input: each bad field and why (the first {MAX_LISTED_ERRORS}).",
+    )
+    error_count: int | None = Field(
+        default=None, description="invalid-input: [-] how many fields are invalid in all."
     )
     fold_velocity: float | None = Field(
         default=None, description="no-equilibrium: [m/s] where the equilibrium branch ends."

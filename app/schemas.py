@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
 
+from app.settings import MAX_ARRAY_LENGTH
 from solver.wing import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
 
 __all__ = [
@@ -102,8 +103,11 @@ SWEEP_EXAMPLES: dict[str, Any] = {
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
-StationList = Annotated[list[Finite], Field(min_length=MIN_STATIONS)]
-PositiveList = Annotated[list[Positive], Field(min_length=MIN_STATIONS)]
+FiniteList = Annotated[list[Finite], Field(max_length=MAX_ARRAY_LENGTH)]
+StationList = Annotated[list[Finite], Field(min_length=MIN_STATIONS, max_length=MAX_ARRAY_LENGTH)]
+PositiveList = Annotated[
+    list[Positive], Field(min_length=MIN_STATIONS, max_length=MAX_ARRAY_LENGTH)
+]
 
 
 def _number_or_list(value: Any) -> str:
@@ -111,7 +115,9 @@ def _number_or_list(value: Any) -> str:
 
 
 class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    # Strict: a JSON value of another type than documented ("10" or true for a number) is
+    # invalid input, not converted. Integers are still accepted for numbers.
+    model_config = ConfigDict(extra="forbid", strict=True)
 
 
 # ----------------------------------------------------------------------------------- requests
@@ -120,7 +126,9 @@ class _Model(BaseModel):
 class Wing(_Model):
     """A symmetric, unswept wing described on its right half at N stations from the root."""
 
-    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [_STUDY_WING]})
+    model_config = ConfigDict(
+        extra="forbid", strict=True, json_schema_extra={"examples": [_STUDY_WING]}
+    )
 
     y: StationList = Field(
         description=(
@@ -134,7 +142,7 @@ class Wing(_Model):
         examples=[_STUDY_WING["chord"]],
     )
     elastic_axis: Annotated[
-        Annotated[Finite, Tag("@number")] | Annotated[list[Finite], Tag("@list")],
+        Annotated[Finite, Tag("@number")] | Annotated[FiniteList, Tag("@list")],
         Discriminator(_number_or_list),
     ] = Field(
         description=(
@@ -215,11 +223,11 @@ class InitialGuess(_Model):
     Overrides the service's own warm start.
     """
 
-    heave: list[Finite] = Field(description="[m] heave at each station.")
-    slope: list[Finite] | None = Field(
+    heave: FiniteList = Field(description="[m] heave at each station.")
+    slope: FiniteList | None = Field(
         default=None, description="[-] slope du/dy at each station (default: zeros)."
     )
-    twist: list[Finite] = Field(description="[deg] twist at each station, positive nose-up.")
+    twist: FiniteList = Field(description="[deg] twist at each station, positive nose-up.")
 
 
 class SolveRequest(_Model):
@@ -227,6 +235,7 @@ class SolveRequest(_Model):
 
     model_config = ConfigDict(
         extra="forbid",
+        strict=True,
         json_schema_extra={"examples": [_STUDY_SOLVE]},
     )
 
@@ -258,13 +267,15 @@ class SweepRequest(_Model):
 
     model_config = ConfigDict(
         extra="forbid",
+        strict=True,
         json_schema_extra={"examples": [_STUDY_SWEEP_REQUEST]},
     )
 
     wing: Wing
     flight: SweepFlight
     velocities: Annotated[
-        Annotated[list[Positive], Tag("@list")] | Annotated[VelocityRange, Tag("@range")],
+        Annotated[list[Positive], Tag("@list"), Field(max_length=MAX_ARRAY_LENGTH)]
+        | Annotated[VelocityRange, Tag("@range")],
         Discriminator(_list_or_range),
     ] = Field(
         description=(

@@ -14,7 +14,12 @@ from typing import Literal
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["Settings", "get_settings"]
+__all__ = ["MAX_ARRAY_LENGTH", "Settings", "get_settings"]
+
+# Hard ceiling on every array in a request, whatever the settings: validation stops at one
+# `too_long` error instead of judging (and listing) every item of a huge array. The configured
+# limits (max_stations, max_sweep_points) apply below it.
+MAX_ARRAY_LENGTH = 1000
 
 
 def _cpu_count() -> int:
@@ -78,8 +83,12 @@ class Settings(BaseSettings):
         default=True,
         description="Run a request once more when its worker died under it (else 503 at once).",
     )
-    max_stations: int = Field(default=150, ge=3, description="Largest mesh size N accepted.")
-    max_sweep_points: int = Field(default=50, ge=1, description="Most velocities in one /sweep.")
+    max_stations: int = Field(
+        default=150, ge=3, le=MAX_ARRAY_LENGTH, description="Largest mesh size N accepted."
+    )
+    max_sweep_points: int = Field(
+        default=50, ge=1, le=MAX_ARRAY_LENGTH, description="Most velocities in one /sweep."
+    )
     max_body_bytes: int = Field(
         default=1_000_000, ge=1024, description="[bytes] largest request body accepted."
     )

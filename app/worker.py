@@ -238,17 +238,10 @@ def _failure(error: SolverError, velocity: float) -> Failure:
 
 
 def _solve(job: SolveJob) -> Equilibrium:
-    if job.initial_guess is None or not job.hint:
-        return solve(job.wing, job.flight, job.initial_guess, job.options)
-    try:
-        eq = solve(job.wing, job.flight, job.initial_guess, job.options)
-    except ConvergenceError:
-        eq = None
-    if eq is not None and eq.stability.stable:
-        return eq
-    # The solver returns an unstable equilibrium reached from a caller's start as it is; a stored
-    # state is only the service's hint, so the solver's own start decides instead.
-    return solve(job.wing, job.flight, None, job.options)
+    if job.hint:
+        # A stored state is only the service's hint: it may save time, never change the answer.
+        return solve(job.wing, job.flight, options=job.options, hint=job.initial_guess)
+    return solve(job.wing, job.flight, job.initial_guess, job.options)
 
 
 def run_solve(job: SolveJob) -> SolveOutcome:

@@ -330,6 +330,8 @@ def solve(
     flight: FlightCondition,
     initial_guess: Equilibrium | np.ndarray | None = None,
     options: SolverOptions | None = None,
+    *,
+    hint: Equilibrium | np.ndarray | None = None,
 ) -> Equilibrium:
     """The static aeroelastic equilibrium of `wing` at `flight`.
 
@@ -339,13 +341,47 @@ def solve(
     fold, `NoEquilibrium`; below it, Newton again from the branch, then `ConvergenceError`. An
     unstable equilibrium is returned only from a start the caller chose, flagged by
     `stability.stable`.
+
+    `hint` is a start that may only save time, never change the answer (a stored equilibrium of
+    this wing, a state interpolated from the branch): if Newton from it does not reach a stable
+    equilibrium, the solve proceeds as if no hint had been given.
     """
     started = time.perf_counter()
     options = options or SolverOptions()
+    if hint is not None and initial_guess is not None:
+        raise ValueError("give an initial_guess or a hint, not both")
     _refuse_beyond_known_fold(wing, flight, initial_guess)
+    equilibrium: Equilibrium | None = None
+    failure: ConvergenceError | None = None
+    spent = 0
+    if hint is not None:
+        hinted, _, spent = _converge_or_fail(wing, flight, hint, options, started, 0)
+        if hinted is not None and hinted.stability.stable:
+            equilibrium = hinted
+    if equilibrium is None:
+        equilibrium, failure, _ = _converge_or_fail(
+            wing, flight, initial_guess, options, started, spent
+        )
+    if equilibrium is not None and equilibrium.stability.stable and not options.find_fold:
+        return equilibrium
+    from solver.recovery import settle  # imported here: it builds on this module
+
+    return settle(wing, flight, initial_guess, equilibrium, failure, options, started)
+
+
+def _converge_or_fail(
+    wing: Wing,
+    flight: FlightCondition,
+    start: Equilibrium | np.ndarray | None,
+    options: SolverOptions,
+    started: float,
+    prior_iterations: int,
+) -> tuple[Equilibrium | None, ConvergenceError | None, int]:
+    """One Newton run from `start` (None: the jig): an equilibrium or the failure, and the
+    iterations, which include `prior_iterations` (spent on an earlier attempt)."""
     model = model_for(wing.n_stations)
     p = wing.parameters(flight.alpha)
-    x0, evaluation0, warm = _initial_point(wing, flight, initial_guess)
+    x0, evaluation0, warm = _initial_point(wing, flight, start)
     result = newton(
         lambda x: model.evaluate(x, p),
         lambda x: model.residual(x, p),
@@ -355,25 +391,18 @@ def solve(
         options.max_iterations,
         evaluation0,
     )
+    iterations = prior_iterations + result.iterations
     if not result.converged:
-        failure = ConvergenceError(
-            flight.velocity, result.iterations, result.residual_norm, result.reason
-        )
-        equilibrium = None
-    else:
-        failure = None
-        equilibrium = equilibrium_from_state(
-            wing,
-            flight,
-            result.x,
-            result.evaluation,
-            iterations=result.iterations,
-            residual_norm=result.residual_norm,
-            warm_start=warm,
-            started=started,
-        )
-        if equilibrium.stability.stable and not options.find_fold:
-            return equilibrium
-    from solver.recovery import settle  # imported here: it builds on this module
-
-    return settle(wing, flight, initial_guess, equilibrium, failure, options, started)
+        failure = ConvergenceError(flight.velocity, iterations, result.residual_norm, result.reason)
+        return None, failure, iterations
+    equilibrium = equilibrium_from_state(
+        wing,
+        flight,
+        result.x,
+        result.evaluation,
+        iterations=iterations,
+        residual_norm=result.residual_norm,
+        warm_start=warm,
+        started=started,
+    )
+    return equilibrium, None, iterations

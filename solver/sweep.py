@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from solver.divergence import (
     DivergenceSummary,
+    equilibrium_branch,
     find_fold,
     fit_divergence,
     linear_divergence,
@@ -56,28 +57,27 @@ def sweep(
 
     The branch from the jig shape is followed first, to its fold: a speed beyond the fold is
     answered with `NoEquilibrium` without a solve (Newton would fail there, or land on another,
-    unstable branch). Each other solve starts from the last stable equilibrium: its stored
-    Jacobian, re-targeted to the new dynamic pressure, gives the first Newton step (the
-    branch-tangent predictor) for free; `solve` falls back to the branch if that fails. A point
-    that fails is recorded with its error and the next one starts from the last success.
+    unstable branch). Every other speed is solved with the branch's interpolated state as a
+    `hint` (usually one Newton iteration; a hint cannot change the answer). A point that fails
+    is recorded with its error.
     """
     limit = search_velocity_limit(wing, density, max(velocities, default=0.0))
     fold = find_fold(wing, alpha, density, limit)
+    branch = equilibrium_branch(wing, alpha, 0.5 * density * limit**2)  # traced by find_fold
     points: list[SweepPoint] = []
-    previous: Equilibrium | None = None
     for velocity in velocities:
         flight = FlightCondition(velocity=velocity, alpha=alpha, density=density)
         if fold.velocity is not None and velocity > fold.velocity:
             points.append(SweepPoint(velocity, None, NoEquilibrium(velocity, fold.velocity)))
             continue
         try:
-            equilibrium = solve(wing, flight, previous, options)
+            # The branch's Hermite interpolation is within a Newton step or so of the answer.
+            hint = branch.start_for(flight.dynamic_pressure)
+            equilibrium = solve(wing, flight, options=options, hint=hint)
         except SolverError as error:
             points.append(SweepPoint(velocity, None, error))
             continue
         points.append(SweepPoint(velocity, equilibrium, None))
-        if equilibrium.stability.stable:
-            previous = equilibrium
     stable = [point.equilibrium for point in points if point.equilibrium is not None]
     divergence = DivergenceSummary(
         linear=linear_divergence(wing, density),

@@ -89,6 +89,7 @@ def _start(tmp: Path, name: str, env: dict[str, str]) -> Iterator[Server]:
             [
                 *(sys.executable, "-m", "uvicorn", "app.main:app"),
                 *("--host", "127.0.0.1", "--port", str(port), "--log-level", "warning"),
+                *("--timeout-keep-alive", "75"),  # as the README and Dockerfile run it
             ],
             cwd=ROOT,
             env=full_env,

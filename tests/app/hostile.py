@@ -194,6 +194,15 @@ AMPLIFIER = Hostile(
     lambda: _with_raw_list(b"chord", _numbers(330_000, b"-1")),
     422,
     "invalid-input",
+    frozenset({"wing.chord"}),  # too long (app.settings.MAX_ARRAY_LENGTH): items never judged
+)
+# As many bad items as an array may hold: each is judged, the problem lists the first few.
+MANY_INVALID_ITEMS = Hostile(
+    "1000_invalid_items",
+    "/solve",
+    lambda: _with_raw_list(b"chord", _numbers(1000, b"-1")),
+    422,
+    "invalid-input",
     frozenset({"wing.chord[0]"}),
 )
 AMPLIFIER_LIMIT_BYTES = 64 * 1024  # a problem naming the first bad items and the count suffices

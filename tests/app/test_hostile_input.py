@@ -18,12 +18,14 @@ from collections.abc import Callable
 import httpx
 import pytest
 
+from app.problems import MAX_LISTED_ERRORS
 from tests.app import study
 from tests.app.conftest import Server
 from tests.app.hostile import (
     AMPLIFIER,
     AMPLIFIER_LIMIT_BYTES,
     HOSTILE,
+    MANY_INVALID_ITEMS,
     WRONG_TYPES,
     Hostile,
     Memory,
@@ -102,16 +104,6 @@ def test_a_sweep_of_the_maximum_point_count_answers_every_point(hostile_server: 
     assert {p["status"] for p in points} == {"equilibrium"}
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "app defect: request fields are validated in pydantic's lax mode, so values of the "
-        'wrong JSON type are converted instead of rejected: "10" and true for a number, '
-        '"30" for an integer, "yes" for a boolean all get 200, although the OpenAPI '
-        "document (type: number / integer / boolean) makes them invalid (expected 422 "
-        "/problems/invalid-input naming the field; e.g. strict=True on the request models)"
-    ),
-)
 @pytest.mark.parametrize("case", WRONG_TYPES, ids=_ids(WRONG_TYPES))
 def test_a_value_of_the_wrong_json_type_is_invalid_input(
     hostile_server: Server, case: Hostile
@@ -119,16 +111,6 @@ def test_a_value_of_the_wrong_json_type_is_invalid_input(
     check_answer(case, send(hostile_server, case))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "app defect: error amplification. A 990 kB body whose wing.chord holds 330,000 "
-        "negative numbers gets a 422 of 30 MB listing every item (and every field name again "
-        "in `detail`); building it blocks the event loop for ~9 s (/healthz waits as long) and "
-        "lifts the web process's peak memory by ~560 MB. Expected: a bounded problem (the "
-        "first bad items and their count)."
-    ),
-)
 def test_many_invalid_items_get_a_bounded_problem(hostile_server: Server, memory: Memory) -> None:
     before = memory.resident
     memory.reset_peak()
@@ -136,6 +118,17 @@ def test_many_invalid_items_get_a_bounded_problem(hostile_server: Server, memory
     check_answer(AMPLIFIER, response)
     assert len(response.content) < AMPLIFIER_LIMIT_BYTES, len(response.content)
     assert memory.peak - before < PEAK_GROWTH_LIMIT, (memory.peak - before) / 2**20
+
+
+def test_a_problem_lists_the_first_invalid_items_and_counts_them_all(
+    hostile_server: Server,
+) -> None:
+    response = send(hostile_server, MANY_INVALID_ITEMS)
+    check_answer(MANY_INVALID_ITEMS, response)
+    problem = response.json()
+    assert problem["error_count"] == 1000
+    assert len(problem["errors"]) == MAX_LISTED_ERRORS
+    assert "and 950 more" in problem["detail"]
 
 
 def test_the_service_still_answers_after_the_hostile_requests(hostile_server: Server) -> None:
