@@ -302,11 +302,14 @@ def trace_branch(
         # bifurcation: near-bifurcations (a wing at small alpha, whose branch folds just short
         # of the linear divergence) let a long step land on another branch whose tangent looks
         # like ours; only the orientation flip tells.
+        # ...or left the physical half-plane: the branch from the jig rises from q = 0, and a
+        # point at q <= 0 means the corrector lost it (absurd pressure scales do that).
         if (
             corrected is None
             or turn > settings.max_turn
             or corrected.displacement > settings.max_displacement * step
             or corrected.orientation != orientation
+            or corrected.w[-1] <= 0
         ):
             step /= 2
             if step < settings.min_step:

@@ -9,7 +9,8 @@ shape decides:
   reached from a start the caller chose (a raw state, or an unstable equilibrium) is returned,
   flagged by its `stability`.
 - below the fold: Newton again, from the branch state at this q (Hermite-interpolated from the
-  continuation); if that fails too, the original `ConvergenceError`.
+  continuation); if that fails too, the original `ConvergenceError`; if it finds only unstable
+  equilibria, `NoEquilibrium` (an unstable state from the solver's own start is never an answer).
 """
 
 from __future__ import annotations
@@ -61,8 +62,11 @@ def settle(
     retried = _from_branch(wing, flight, options, started, first_attempt)
     if retried is not None and retried.stability.stable:
         return _with_fold(retried, fold)
-    if equilibrium is not None:
-        return _with_fold(equilibrium, fold)
+    if equilibrium is not None or retried is not None:
+        # Only statically unstable equilibria, from the solver's own starts: not an answer.
+        raise NoEquilibrium(
+            flight.velocity, fold.velocity, "only statically unstable equilibria were found"
+        )
     assert failure is not None
     raise failure
 

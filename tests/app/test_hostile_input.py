@@ -137,15 +137,6 @@ def test_the_service_still_answers_after_the_hostile_requests(hostile_server: Se
     next_normal_request_is_solved(hostile_server)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect through the API: POST /solve of a 7-station wing whose linear "
-        "divergence lies at 1.76e9 m/s, at that airspeed, gets 500 /problems/internal-error "
-        "('unexpected ValueError': a fold traced at negative q), and later solves of the same "
-        "wing in that worker get 500 too (the poisoned branch cache); expected 200 or 422"
-    ),
-)
 def test_an_absurd_airspeed_is_answered_without_a_server_error(hostile_server: Server) -> None:
     wing = {
         "y": [i / 6 for i in range(7)],

@@ -279,16 +279,6 @@ def _never_diverging_in_practice() -> solver.Wing:
     return solver.Wing.create(y, chord, elastic_axis, 10.0, 1.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect: for this wing (q_div = 1.5e18 Pa) a solve at 1.76e9 m/s traces a branch "
-        "whose 'fold' lies at q = -2.8e6 Pa; FlightCondition.velocity_for(negative q) raises "
-        "ValueError('math domain error') out of solve(), and the cached branch then makes every "
-        "later solve of this wing and alpha raise it too, at 6 m/s included (via "
-        "equilibrium._refuse_beyond_known_fold); through the API: 500 internal-error for both"
-    ),
-)
 def test_an_absurd_airspeed_gets_a_typed_answer_and_leaves_the_wing_solvable():
     wing = _never_diverging_in_practice()
     absurd = FlightCondition(velocity=1.7584768587e9, alpha=1.0, density=1.0)
@@ -299,16 +289,6 @@ def test_an_absurd_airspeed_gets_a_typed_answer_and_leaves_the_wing_solvable():
     assert isinstance(result, Equilibrium) and result.stability.stable
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect: past the linear divergence speed (24.22 m/s) the study's wing at "
-        "alpha = 1e-12 deg (or 1e-300) gets the unloaded jig back from a cold solve, flagged "
-        "unstable (margin 1.07 at 25 m/s), while alpha = 0 and alpha = 1e-6 both get "
-        "NoEquilibrium; solve() documents that an unstable equilibrium is returned only from a "
-        "start the caller chose"
-    ),
-)
 @pytest.mark.parametrize("alpha", [1e-12, 1e-300], ids=["1e-12_deg", "1e-300_deg"])
 def test_a_cold_solve_past_divergence_at_a_tiny_alpha_is_no_equilibrium(alpha):
     flight = FlightCondition(velocity=25.0, alpha=alpha, density=1.225)
