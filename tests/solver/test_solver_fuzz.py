@@ -280,6 +280,9 @@ def _never_diverging_in_practice() -> solver.Wing:
 
 
 def test_an_absurd_airspeed_gets_a_typed_answer_and_leaves_the_wing_solvable():
+    """Found by fuzzing before commit 43ab74b: at 1.76e9 m/s the branch's 'fold' was traced at
+    q = -2.8e6 Pa, solve() raised ValueError('math domain error'), and the cached branch made
+    every later solve of this wing and alpha raise it too (500 through the API)."""
     wing = _never_diverging_in_practice()
     absurd = FlightCondition(velocity=1.7584768587e9, alpha=1.0, density=1.0)
     check(outcome(lambda: solver.solve(wing, absurd)), absurd)
@@ -291,6 +294,9 @@ def test_an_absurd_airspeed_gets_a_typed_answer_and_leaves_the_wing_solvable():
 
 @pytest.mark.parametrize("alpha", [1e-12, 1e-300], ids=["1e-12_deg", "1e-300_deg"])
 def test_a_cold_solve_past_divergence_at_a_tiny_alpha_is_no_equilibrium(alpha):
+    """Found by fuzzing before commit 43ab74b: at alpha = 1e-12 deg a cold solve past the
+    linear divergence speed returned the unloaded jig flagged unstable, where alpha = 0 and
+    alpha = 1e-6 got NoEquilibrium."""
     flight = FlightCondition(velocity=25.0, alpha=alpha, density=1.225)
     result = outcome(lambda: solver.solve(_study_wing(), flight))
     check(result, flight)
