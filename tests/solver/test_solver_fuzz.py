@@ -301,3 +301,33 @@ def test_a_cold_solve_past_divergence_at_a_tiny_alpha_is_no_equilibrium(alpha):
     result = outcome(lambda: solver.solve(_study_wing(), flight))
     check(result, flight)
     assert isinstance(result, NoEquilibrium)
+
+
+def _bistable_wing() -> solver.Wing:
+    """Found by fuzzing (simplified): uniform stations, linear taper, GJ = 1 N m^2. Past its
+    linear divergence (0.311 Pa) the branch from the jig reaches +70 deg of tip twist at
+    q = 0.519 Pa; a nose-down equilibrium (-70 deg, negative lift) is statically stable too."""
+    y = np.linspace(0, 5, 27)
+    return solver.Wing.create(y, 1.438 * (1 - 0.877 * y / 5), 0.4, 1.232e6, 1.0)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "solver defect: a hint may change the answer. At V = 1 m/s, rho = 1.038 (q = 0.519 Pa), "
+        "alpha 0.5 deg, the cold solve gives the jig branch's equilibrium (tip twist +69.93 deg, "
+        "lift +16.69 N); hinted with the stable equilibrium of the same wing at 0.8 m/s (tip "
+        "twist +33.6 deg, on that branch) Newton lands on tip twist -70.48 deg, lift -16.55 N, "
+        "also flagged stable, and solve() returns it. Through the API the service's state-cache "
+        "warm start does the same: the answer depends on which requests came before"
+    ),
+)
+def test_a_hint_from_the_jig_branch_keeps_the_cold_answer():
+    wing = _bistable_wing()
+    flight = FlightCondition(velocity=1.0, alpha=0.5, density=1.038)
+    cold = solver.solve(wing, flight)
+    start = solver.solve(wing, flight.at_velocity(0.8))
+    assert start.stability.stable
+    hinted = solver.solve(wing, flight, hint=start.state)
+    assert hinted.tip_twist == pytest.approx(cold.tip_twist, rel=1e-8)
+    assert hinted.lift == pytest.approx(cold.lift, rel=1e-8)
