@@ -207,6 +207,30 @@ def test_a_solve_warm_started_from_another_speed_ends_in_a_documented_outcome(
         assert warm.warm_start
 
 
+@settings(max_examples=fuzz_examples(30))
+@given(case=wings(), alpha=alphas, ratio=ratios, hint_ratio=ratios)
+def test_a_hint_never_changes_the_answer(case, alpha, ratio, hint_ratio):
+    """`solve(..., hint=)` (the service's warm start from a stored stable equilibrium) gives the
+    answer of the cold solve: the same outcome, and the same equilibrium to 1e-6 (relative, with
+    1e-6 deg / 1e-9 m absolute floors for near-rigid wings, whose deformation is resolved only
+    to the absolute residual tolerance). A cold ConvergenceError may become an answer."""
+    density = solver.wing.ISA_SEA_LEVEL_DENSITY
+    flight = FlightCondition(speed_for(case.wing, ratio, density), alpha, density)
+    start = outcome(lambda: solver.solve(case.wing, flight.at_velocity(
+        speed_for(case.wing, hint_ratio, density))))  # fmt: skip
+    if not (isinstance(start, Equilibrium) and start.stability.stable):
+        return
+    cold = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS))
+    hinted = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS, hint=start.state))
+    check(hinted, flight)
+    if isinstance(cold, ConvergenceError):
+        return
+    assert type(hinted) is type(cold), (cold, hinted)
+    if isinstance(cold, Equilibrium):
+        np.testing.assert_allclose(hinted.twist, cold.twist, rtol=1e-6, atol=1e-6)
+        np.testing.assert_allclose(hinted.heave, cold.heave, rtol=1e-6, atol=1e-9)
+
+
 @settings(max_examples=fuzz_examples(20))
 @given(
     case=wings(max_stations=30),
