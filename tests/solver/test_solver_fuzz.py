@@ -114,7 +114,7 @@ def outcome(call: Callable[[], T]) -> T | SolverError:
         ) from error
 
 
-def check_equilibrium(eq: Equilibrium, flight: FlightCondition) -> None:
+def check_equilibrium(eq: Equilibrium, flight: FlightCondition, hinted: bool = False) -> None:
     n = eq.wing.n_stations
     for name in STATION_FIELDS:
         values = getattr(eq, name)
@@ -129,9 +129,9 @@ def check_equilibrium(eq: Equilibrium, flight: FlightCondition) -> None:
     if eq.rigid_lift != 0:
         assert math.isfinite(eq.lift_amplification)
     assert eq.flight == flight
-    # Newton from the caller's start, then at most once more from the branch (solver.recovery):
-    # the reported count covers both attempts.
-    assert eq.iterations <= 2 * OPTIONS.max_iterations
+    # Newton from the hint if any, from the caller's start, then at most once more from the
+    # branch (solver.recovery): the reported count covers every attempt.
+    assert eq.iterations <= (3 if hinted else 2) * OPTIONS.max_iterations
     assert eq.residual_norm <= OPTIONS.tolerance
     # The root clamps are residual rows: they hold to the tolerance.
     assert abs(eq.heave[0]) <= OPTIONS.tolerance
@@ -160,22 +160,22 @@ def check_stability(eq: Equilibrium) -> None:
         assert s.divergence_velocity is not None and math.isfinite(s.divergence_velocity)
 
 
-def check_error(error: SolverError, velocity: float) -> None:
+def check_error(error: SolverError, velocity: float, hinted: bool = False) -> None:
     assert isinstance(error, NoEquilibrium | ConvergenceError), type(error)
     if isinstance(error, NoEquilibrium):
         assert error.velocity == velocity
         fold = error.fold_velocity
         assert fold is None or (math.isfinite(fold) and 0 < fold < velocity), fold
     else:
-        assert error.iterations <= OPTIONS.max_iterations
+        assert error.iterations <= (2 if hinted else 1) * OPTIONS.max_iterations
         assert error.velocity == velocity
 
 
-def check(result: Equilibrium | SolverError, flight: FlightCondition) -> None:
+def check(result: Equilibrium | SolverError, flight: FlightCondition, hinted: bool = False) -> None:
     if isinstance(result, Equilibrium):
-        check_equilibrium(result, flight)
+        check_equilibrium(result, flight, hinted)
     else:
-        check_error(result, flight.velocity)
+        check_error(result, flight.velocity, hinted)
 
 
 # --------------------------------------------------------------------------------- tests
@@ -211,9 +211,11 @@ def test_a_solve_warm_started_from_another_speed_ends_in_a_documented_outcome(
 @given(case=wings(), alpha=alphas, ratio=ratios, hint_ratio=ratios)
 def test_a_hint_never_changes_the_answer(case, alpha, ratio, hint_ratio):
     """`solve(..., hint=)` (the service's warm start from a stored stable equilibrium) gives the
-    answer of the cold solve: the same outcome, and the same equilibrium to 1e-6 (relative, with
-    1e-6 deg / 1e-9 m absolute floors for near-rigid wings, whose deformation is resolved only
-    to the absolute residual tolerance). A cold ConvergenceError may become an answer."""
+    answer of the cold solve: the same outcome, and the same equilibrium, not another one. Two
+    roots within the residual tolerance differ by the tolerance times the problem's condition
+    number: up to ~2e-6 relative for the softest wings generated (EI = 10 N m^2 over 10 m), so
+    "the same" is 1e-4 relative here, with 1e-6 deg / 1e-9 m floors for near-rigid wings. A
+    cold ConvergenceError may become an answer."""
     density = solver.wing.ISA_SEA_LEVEL_DENSITY
     flight = FlightCondition(speed_for(case.wing, ratio, density), alpha, density)
     start = outcome(lambda: solver.solve(case.wing, flight.at_velocity(
@@ -222,13 +224,13 @@ def test_a_hint_never_changes_the_answer(case, alpha, ratio, hint_ratio):
         return
     cold = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS))
     hinted = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS, hint=start.state))
-    check(hinted, flight)
+    check(hinted, flight, hinted=True)
     if isinstance(cold, ConvergenceError):
         return
     assert type(hinted) is type(cold), (cold, hinted)
     if isinstance(cold, Equilibrium):
-        np.testing.assert_allclose(hinted.twist, cold.twist, rtol=1e-6, atol=1e-6)
-        np.testing.assert_allclose(hinted.heave, cold.heave, rtol=1e-6, atol=1e-9)
+        np.testing.assert_allclose(hinted.twist, cold.twist, rtol=1e-4, atol=1e-6)
+        np.testing.assert_allclose(hinted.heave, cold.heave, rtol=1e-4, atol=1e-9)
 
 
 @settings(max_examples=fuzz_examples(20))
@@ -355,3 +357,25 @@ def test_a_hint_from_the_jig_branch_keeps_the_cold_answer():
     hinted = solver.solve(wing, flight, hint=start.state)
     assert hinted.tip_twist == pytest.approx(cold.tip_twist, rel=1e-8)
     assert hinted.lift == pytest.approx(cold.lift, rel=1e-8)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "solver defect: a hint turns NoEquilibrium into an answer. This wing's linear divergence "
+        "is at 5.4e8 m/s; at 1.08e9 m/s (alpha 1 deg, rho 1.225) the cold solve raises "
+        "NoEquilibrium ('only statically unstable equilibria were found'), although the branch "
+        "from the jig continues without a fold to 1.7e9 m/s; hinted with the stable equilibrium "
+        "at 5.4e8 m/s, solve() returns a stable equilibrium (tip twist -2.45 deg, lift 9902 N)"
+    ),
+)
+def test_a_hint_does_not_turn_no_equilibrium_into_an_answer():
+    y = np.linspace(0, 1, 8)
+    chord = 1.7782794100389228 * (1 - (1 - 0.25) * y)
+    wing = solver.Wing.create(y, chord, [0.25] * 4 + [0.05078125] * 4, 10.0, 1.0)
+    flight = FlightCondition(velocity=1081208826.6422322, alpha=1.0, density=1.225)
+    start = solver.solve(wing, flight.at_velocity(540604413.3211161))
+    assert start.stability.stable
+    cold = outcome(lambda: solver.solve(wing, flight))
+    hinted = outcome(lambda: solver.solve(wing, flight, hint=start.state))
+    assert type(hinted) is type(cold), (cold, hinted)
