@@ -4,10 +4,11 @@
         [--clients 16 64] [--seconds 60] [--overload-clients 256] [--overload-seconds 20]
         [--transport raw|httpx] [--json results.json]
 
-Without --url it starts `uvicorn app.main:app` on a free loopback port with the default settings
-(FLEXWING_WORKERS = CPU count, FLEXWING_MAX_PENDING = 64) and stops it at the end; --url must be
-a loopback address. Everything is bounded: each phase ends after --seconds (or --max-requests),
-every request has a 60 s timeout, and the script stops by itself.
+Without --url it starts `uvicorn app.main:app --timeout-keep-alive 75` (as the README runs it) on a
+free loopback port with the default settings (FLEXWING_WORKERS = CPU count, FLEXWING_MAX_PENDING =
+64) and stops it at the end; --url must be a loopback address. Everything is bounded: each phase
+ends after --seconds (or --max-requests), every request has a 60 s timeout, and the script stops
+by itself.
 
 Traffic (asyncio, one keep-alive connection per client; each client sends its next request when
 the previous one is answered; --transport raw, the default, is a minimal HTTP/1.1 client: on this
@@ -320,6 +321,7 @@ def local_server_process(
         [
             *(sys.executable, "-m", "uvicorn", "app.main:app", "--port", str(port)),
             *("--host", "127.0.0.1", "--log-level", "warning", "--no-access-log"),
+            *("--timeout-keep-alive", "75"),  # as the README and the Dockerfile run it
         ],
         cwd=ROOT,
         env=os.environ | (env or {}),
