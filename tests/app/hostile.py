@@ -74,17 +74,6 @@ def _nested(depth: int, open_: bytes, close: bytes, inner: bytes = b"") -> bytes
     return open_ * depth + inner + close * depth
 
 
-def _wing_of(n: int) -> dict[str, Any]:
-    chord = np.sqrt(np.linspace(2, 0.02, n))
-    return {
-        "y": np.linspace(0, 5, n).tolist(),
-        "chord": chord.tolist(),
-        "elastic_axis": 0.4,
-        "bending_stiffness": (2e4 * chord**3).tolist(),
-        "torsional_stiffness": (1e3 * chord**3).tolist(),
-    }
-
-
 def _numbers(count: int, token: bytes = b"0") -> bytes:
     return b"[" + b",".join([token] * count) + b"]"
 
@@ -154,8 +143,8 @@ HOSTILE: list[Hostile] = [
     Hostile("string_wing", "/solve", lambda: _json(_solve(wing="study")), 422, "invalid-input",
             frozenset({"wing"})),
     # --- at the limits and one past
-    Hostile("N_150", "/solve", lambda: _json(_solve(wing=_wing_of(MAX_STATIONS))), 200),
-    Hostile("N_151", "/solve", lambda: _json(_solve(wing=_wing_of(MAX_STATIONS + 1))), 422,
+    Hostile("N_150", "/solve", lambda: _json(_solve(wing=study.wing(n=MAX_STATIONS))), 200),
+    Hostile("N_151", "/solve", lambda: _json(_solve(wing=study.wing(n=MAX_STATIONS + 1))), 422,
             "invalid-input", frozenset({"wing.y"})),
     Hostile("sweep_50_points", "/sweep",
             lambda: _json(_sweep(np.linspace(5, 21, MAX_SWEEP_POINTS).tolist())), 200),

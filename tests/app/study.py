@@ -15,10 +15,11 @@ REFERENCE = ROOT.parent / "shared" / "reference" / "ref_seed.json"
 DENSITY = 1.2249991558876672
 
 
-def wing(stiffness_scale: float = 1.0) -> dict[str, Any]:
-    """y = linspace(0, 5, 30), c = sqrt(linspace(2, 0.02, 30)), x_ea 0.4, EI 2e4 c^3, GJ 1e3 c^3."""
-    y = np.linspace(0, 5, 30)
-    chord = np.sqrt(np.linspace(2, 0.02, 30))
+def wing(stiffness_scale: float = 1.0, n: int = 30) -> dict[str, Any]:
+    """y = linspace(0, 5, n), c = sqrt(linspace(2, 0.02, n)), x_ea 0.4, EI 2e4 c^3, GJ 1e3 c^3
+    (the study's wing has n = 30; more stations make a slower solve for the fault tests)."""
+    y = np.linspace(0, 5, n)
+    chord = np.sqrt(np.linspace(2, 0.02, n))
     return {
         "y": y.tolist(),
         "chord": chord.tolist(),

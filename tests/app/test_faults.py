@@ -12,7 +12,6 @@ from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any
 
 import httpx
-import numpy as np
 import pytest
 
 from tests.app import study
@@ -22,14 +21,7 @@ from tests.app.conftest import Server
 def _big_wing(n: int = 150) -> dict[str, Any]:
     """The study's wing on 150 stations: ~0.3 s to build its model and ~0.6 s per solve on the
     virtual machine, against ~20 ms for 30 stations."""
-    chord = np.sqrt(np.linspace(2, 0.02, n))
-    return {
-        "y": np.linspace(0, 5, n).tolist(),
-        "chord": chord.tolist(),
-        "elastic_axis": 0.4,
-        "bending_stiffness": (2e4 * chord**3).tolist(),
-        "torsional_stiffness": (1e3 * chord**3).tolist(),
-    }
+    return study.wing(n=n)
 
 
 def _post_big(server: Server, velocity: float) -> httpx.Response:
