@@ -12,6 +12,7 @@ Environment:
     FLEXWING_CACHE_DIR  where compiled libraries live (default: ~/.cache/flexwing)
     FLEXWING_COMPILE    "0" to never compile (virtual machine only); default "1"
     FLEXWING_CC         C compiler (default: "cc")
+    FLEXWING_MODEL_CACHE_SIZE  mesh sizes whose models a process keeps (default 8, LRU)
 """
 
 from __future__ import annotations
@@ -142,7 +143,24 @@ class CompiledModel:
             self.compiled = True
 
 
+# Models kept per process, least recently used first: each holds CasADi graphs of 10-60 MB, so
+# a service asked for many mesh sizes must not keep them all. An evicted size is rebuilt (or its
+# library reloaded from disk) in milliseconds to a second when asked for again.
 _models: dict[int, CompiledModel] = {}
+
+
+def _model_cache_size() -> int:
+    return max(1, int(os.environ.get("FLEXWING_MODEL_CACHE_SIZE", "8")))
+
+
+def _remember(n: int, model: CompiledModel) -> None:
+    """Insert or refresh N as the most recently used model; evict beyond the cache size."""
+    _models.pop(n, None)
+    _models[n] = model
+    while len(_models) > _model_cache_size():
+        _models.pop(next(iter(_models)))
+
+
 _models_lock = threading.Lock()
 _compile_threads: dict[int, threading.Thread] = {}
 
@@ -236,7 +254,10 @@ def _background_compile(
 
 def model_for(n: int) -> CompiledModel:
     """The cached model for N stations: compiled if a library exists, else the VM (compiling)."""
-    model = _models.get(n)
+    with _models_lock:
+        model = _models.get(n)
+        if model is not None:
+            _remember(n, model)
     if model is not None:
         if not model.compiled and n not in _compile_threads and _library_path(n).exists():
             with contextlib.suppress(OSError, RuntimeError):
@@ -264,7 +285,7 @@ def model_for(n: int) -> CompiledModel:
             )
             _compile_threads[n] = thread
             thread.start()
-        _models[n] = model
+        _remember(n, model)
         return model
 
 

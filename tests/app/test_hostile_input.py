@@ -158,17 +158,6 @@ def _worker_memory(server: Server) -> int:
     return sum(Memory(pid).resident for pid in server.pids())
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver/app defect: a worker keeps the model of every mesh size it has ever solved "
-        "(solver.compiled._models is never evicted), ~25-60 MB each for N = 60-100 on CasADi's "
-        "VM: 36 valid requests with N = 95, 94, ..., 60 grow the two workers by 564, 437 and "
-        "337 MB per dozen (1.3 GB), and N = 3..150 in one process takes 5.7 GB; with "
-        "compilation on, each new N also starts a C compilation (up to a minute of CPU at N = "
-        "150). Expected: a bounded model cache, so memory stops growing"
-    ),
-)
 def test_solving_many_mesh_sizes_does_not_grow_the_workers_without_bound(
     hostile_server: Server,
 ) -> None:

@@ -109,3 +109,16 @@ def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache
     while list(private_cache.glob("build-*")) and time.monotonic() < deadline:
         time.sleep(0.2)
     assert not list(private_cache.glob("build-*"))
+
+
+def test_a_process_keeps_a_bounded_number_of_mesh_sizes(
+    private_cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("FLEXWING_COMPILE", "0")
+    monkeypatch.setenv("FLEXWING_MODEL_CACHE_SIZE", "2")
+    first = compiled.model_for(4)
+    compiled.model_for(5)
+    assert compiled.model_for(4) is first  # a hit makes N = 4 the most recently used
+    compiled.model_for(6)  # evicts N = 5, the least recently used
+    assert sorted(compiled._models) == [4, 6]
+    assert compiled.model_for(4) is first
