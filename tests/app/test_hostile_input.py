@@ -162,7 +162,8 @@ def test_solving_many_mesh_sizes_does_not_grow_the_workers_without_bound(
     hostile_server: Server,
 ) -> None:
     """Three dozen mesh sizes, largest first: once a bounded model cache is full, evicted
-    models make room for the smaller ones, so the third dozen costs little next to the first."""
+    models make room for the smaller ones, so the third dozen costs little next to the first.
+    Before commit b36e871 every model was kept: 564, 437 and 337 MB per dozen (1.3 GB)."""
     growth = []
     for block in range(3):
         before = _worker_memory(hostile_server)
