@@ -93,8 +93,24 @@ class BodyLimitMiddleware:
         await self.app(scope, replay, send)
 
 
-def _openapi(app: FastAPI) -> Callable[[], dict[str, Any]]:
-    """The OpenAPI document, with error responses as application/problem+json."""
+def _apply_limits(node: Any, settings: Settings) -> None:
+    """Write the configured limits where the schema marks them (`x-flexwing-limit`): maxItems of
+    a list, maximum of a count."""
+    if isinstance(node, dict):
+        limit = node.pop("x-flexwing-limit", None)
+        if limit is not None:
+            value = getattr(settings, limit)
+            node["maxItems" if node.get("type") == "array" else "maximum"] = value
+        for child in node.values():
+            _apply_limits(child, settings)
+    elif isinstance(node, list):
+        for child in node:
+            _apply_limits(child, settings)
+
+
+def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
+    """The OpenAPI document, with error responses as application/problem+json and the
+    configured limits."""
 
     def build() -> dict[str, Any]:
         if app.openapi_schema is not None:
@@ -116,6 +132,7 @@ def _openapi(app: FastAPI) -> Callable[[], dict[str, Any]]:
                     ref = content.get("application/json", {}).get("schema", {}).get("$ref", "")
                     if ref.endswith("/ProblemDetails"):
                         content[PROBLEM_MEDIA_TYPE] = content.pop("application/json")
+        _apply_limits(schema, settings)
         app.openapi_schema = schema
         return schema
 
@@ -151,7 +168,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         app.include_router(module.router)
     app.add_middleware(BodyLimitMiddleware, limit=settings.max_body_bytes)
     app.add_middleware(MetricsMiddleware, metrics=metrics)
-    app.openapi = _openapi(app)  # type: ignore[method-assign]
+    app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app
 
 
