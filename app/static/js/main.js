@@ -373,7 +373,7 @@ const TOTALS = [
   ["rigid_lift", "Rigid lift (jig shape)", (r) => `${f(r.totals.rigid_lift, 1)} N`],
   ["lift_amplification", "Lift amplification L / L_rigid", (r) => f(r.totals.lift_amplification, 3)],
   ["tip_twist", "Tip twist (nose-up > 0)", (r) => `${signed(r.totals.tip_twist, 2)} deg`],
-  ["tip_heave", "Tip heave", (r, w) => `${f(r.totals.tip_heave, 4)} m (${f((100 * r.totals.tip_heave) / w.y.at(-1), 1)} % of the half-span)`],
+  ["tip_heave", "Tip heave", (r, w) => `${f(r.totals.tip_heave, 4)} m (${f((100 * r.totals.tip_heave) / w.y.at(-1), 1)} % of b/2)`],
   ["root_bending_moment", "Root bending moment", (r) => `${f(r.totals.root_bending_moment, 1)} N·m`],
   ["root_torque", "Root torque", (r) => `${f(r.totals.root_torque, 2)} N·m`],
   ["margin", "Stability margin q / q_div (local)", (r) => `${f(r.stability.margin, 3)} (${r.stability.stable ? "stable" : "UNSTABLE"})`],
@@ -385,17 +385,18 @@ const TOTALS = [
 
 function renderSolve() {
   const { request, response, rigid, rigidNote } = state.solve;
-  const body = $("totals").tBodies[0];
-  body.replaceChildren();
-  for (const [key, label, format] of TOTALS) {
-    const row = body.insertRow();
-    row.dataset.total = key;
-    const th = document.createElement("th");
-    th.scope = "row";
-    th.textContent = label;
-    row.append(th);
-    row.insertCell().textContent = format(response, request.wing);
-  }
+  $("totals").replaceChildren(
+    ...TOTALS.map(([key, label, format]) => {
+      const item = document.createElement("div");
+      item.dataset.total = key;
+      const term = document.createElement("dt");
+      term.textContent = label;
+      const value = document.createElement("dd");
+      value.textContent = format(response, request.wing);
+      item.append(term, value);
+      return item;
+    }),
+  );
   const { velocity, alpha, density } = request.flight;
   $("totals-condition").textContent = `${velocity} m/s, alpha ${alpha} deg, ${density} kg/m^3`;
   $("rigid-note").textContent = rigidNote;
@@ -700,7 +701,7 @@ function wire() {
 async function main() {
   render(PLANFORM_FIELDS, $("planform"));
   render(FLIGHT_FIELDS, $("flight"));
-  render(SWEEP_FIELDS, $("sweep"));
+  render(SWEEP_FIELDS, $("sweep"), { form: "sweep-form" });
   for (const key of ["2", "3", "4", "5"]) figures.clear(`14.${key}`);
   wire();
   setMode("planform");
