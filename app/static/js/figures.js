@@ -157,7 +157,7 @@ function line(label, data, color, extra = {}) {
   };
 }
 
-function draw(canvasId, { title, datasets, xTitle, yTitle, x = {}, y = {}, plugins = {}, legend = true }) {
+function draw(canvasId, { title, datasets, xTitle, yTitle, x = {}, y = {}, plugins = {}, legend = true, pointLegend = false }) {
   charts.get(canvasId)?.destroy();
   const canvas = document.getElementById(canvasId);
   const chart = new Chart(canvas, {
@@ -167,7 +167,8 @@ function draw(canvasId, { title, datasets, xTitle, yTitle, x = {}, y = {}, plugi
       scales: { x: axis(xTitle, x), y: axis(yTitle, y) },
       plugins: {
         title: { display: Boolean(title), text: title, font: { size: 13, weight: "600" } },
-        legend: { display: legend, labels: { filter: (item) => !item.text.startsWith("_") } },
+        // pointLegend: each legend entry drawn in its dataset's pointStyle ("line" for curves).
+        legend: { display: legend, labels: pointLegend ? { usePointStyle: true, boxHeight: 10 } : {} },
         tooltip: { intersect: false, mode: "nearest" },
         ...plugins,
       },
@@ -323,16 +324,16 @@ export function drawSweep(sweep, density) {
   if (linear.velocity != null) vlines.push({ x: linear.velocity, label: `linear divergence ${fmt(linear.velocity, 2)} m/s`, color: COLORS.linear, dash: [6, 4] });
   if (fit.velocity != null) vlines.push({ x: fit.velocity, label: `fit: V_div ${fmt(fit.velocity, 2)} m/s`, color: COLORS.fit, dash: [2, 3] });
   const regions = fold.velocity != null ? [{ from: fold.velocity, to: 1e9, color: "rgba(216, 67, 21, 0.07)" }] : [];
-  const xmax = 1.05 * Math.max(...sweep.points.map((p) => p.velocity), ...vlines.map((l) => l.x));
+  const xmax = 5 * Math.ceil((1.03 * Math.max(...sweep.points.map((p) => p.velocity), ...vlines.map((l) => l.x))) / 5);
   const ampSets = [];
   if (fit.slope != null && fit.intercept != null && fit.velocity != null) {
     // The study draws the fit from 0 to 92 % of its divergence speed.
     const fitV = Array.from({ length: 300 }, (_, i) => (0.92 * fit.velocity * i) / 299);
     const fitA = fitV.map((v) => 1 / (fit.intercept + fit.slope * 0.5 * density * v * v));
     series.amplification_fit = { label: "A = 1/(1 - q/q_div)", x: fitV, y: fitA };
-    ampSets.push(line("fit: A = 1/(intercept + slope q)", points(fitV, fitA), COLORS.fit, { borderDash: [6, 4], borderWidth: 1.5 }));
+    ampSets.push(line("fit: A = 1/(intercept + slope q)", points(fitV, fitA), COLORS.fit, { borderDash: [6, 4], borderWidth: 1.5, pointStyle: "line" }));
   }
-  ampSets.push(line("coupled model", points(V, A), COLORS.flexible, { showLine: false, pointRadius: 4 }));
+  ampSets.push(line("coupled model", points(V, A), COLORS.flexible, { showLine: false, pointRadius: 4, pointStyle: "circle" }));
   const noEq = { label: "no equilibrium", data: points(series.no_equilibrium.x, series.no_equilibrium.y), borderColor: COLORS.fold, backgroundColor: COLORS.fold, pointStyle: "crossRot", pointRadius: 7, borderWidth: 2 };
   if (failed.length) ampSets.push(noEq);
   const speed = { min: 0, max: xmax };
@@ -343,6 +344,7 @@ export function drawSweep(sweep, density) {
     yTitle: "tip twist [deg]",
     x: speed,
     legend: failed.length > 0,
+    pointLegend: true,
     plugins: { annotations: { vlines, regions, vlineLabels: false } },
   });
   draw("chart-amp", {
@@ -352,6 +354,7 @@ export function drawSweep(sweep, density) {
     yTitle: kind === "CL" ? "amplification CL / CL_rigid [-]" : "amplification L / L_rigid [-]",
     x: speed,
     y: { min: 0 },
+    pointLegend: true,
     plugins: { annotations: { vlines, regions } },
   });
   record("14.4", series, marks, { amplification: kind, points_used: fit.points_used });

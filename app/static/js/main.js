@@ -192,14 +192,10 @@ function attachError(control, text) {
 function controlsFor(path) {
   const found = [];
   const exact = document.querySelector(`[data-path="${CSS.escape(path)}"]`);
-  if (exact) found.push(exact);
   const match = /^wing\.(\w+)(?:\[(\d+)\])?/.exec(path);
   if (match) {
     const [, list, index] = match;
-    if (!exact) {
-      const cell = index !== undefined ? $(`cell-${list}-${index}`) : null;
-      found.push(cell ?? $(`col-${list}`));
-    }
+    // In planform mode the numbers that generated the value come first (focus goes there).
     if (state.mode === "planform") {
       for (const field of PLANFORM_FIELDS.filter((f) => f.feeds?.includes(list))) {
         const last = table.rows - 1;
@@ -208,6 +204,13 @@ function controlsFor(path) {
         found.push(state.controls[field.key].control);
       }
     }
+    if (exact) found.push(exact);
+    else {
+      const cell = index !== undefined ? $(`cell-${list}-${index}`) : null;
+      found.push(cell ?? $(`col-${list}`));
+    }
+  } else if (exact) {
+    found.push(exact);
   }
   return found.filter(Boolean);
 }
@@ -285,7 +288,12 @@ function showProblem(error, velocity) {
     box.append(list);
   }
   box.hidden = false;
-  (first ?? box).scrollIntoView({ block: "center" });
+  if (first) {
+    first.focus({ preventScroll: true }); // keyboard users land on the first input to fix
+    first.scrollIntoView({ block: "center" });
+  } else {
+    box.scrollIntoView({ block: "nearest" });
+  }
 }
 
 // -------------------------------------------------------------------------------- busy state
