@@ -223,8 +223,9 @@ def test_a_sweep_draws_the_amplification_curve_and_marks_the_fold(
     }"""
     )
     before = tab.runs()
-    page.click("#sweep-button")
+    page.press("#f-sweep_count", "Enter")  # Enter in a sweep field sweeps
     tab.wait_runs("sweep", before)
+    assert tab.runs()["solve"] == before["solve"]
     busy = page.evaluate("window.__busy")
     assert busy[0] == {"busy": "true", "progress": True, "sweepDisabled": True}
     assert busy[-1]["busy"] is None and not page.is_disabled("#sweep-button")
