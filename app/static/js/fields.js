@@ -82,7 +82,9 @@ export const SWEEP_FIELDS = [
 
 // Fields later API versions may add. Each is shown only when the running server's OpenAPI
 // document (/openapi.json) has `property` in components.schemas[`schema`]; its description
-// there becomes the hint. A "column" field adds a column to the station table instead.
+// there becomes the hint. A "column" field adds a column to the station table instead. A group
+// (e.g. a tube spar) is one entry per member with a nested path, e.g. { schema: "TubeSpar",
+// property: "outer_diameter", path: "wing.spar.outer_diameter", ... }: setPath builds the object.
 export const OPTIONAL_FIELDS = [
   { key: "sweep_angle", schema: "Wing", property: "sweep", path: "wing.sweep", label: "Sweep", unit: "deg", value: 0 },
   { key: "airfoil", schema: "Wing", property: "airfoil", path: "wing.airfoil", label: "Airfoil", kind: "text", value: "" },
