@@ -13,12 +13,13 @@ from typing import Any
 
 from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
+from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.pool import WorkerPool
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import health, solve, sweep
+from app.routes import health, page, solve, sweep
 from app.service import Service
 from app.settings import Settings, get_settings
 
@@ -158,14 +159,17 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         version=__version__,
         description=DESCRIPTION,
         lifespan=lifespan,
+        docs_url=None,  # /docs is app.routes.page's: Swagger UI from vendored files, no CDN
+        redoc_url=None,
     )
     app.state.settings = settings
     app.state.metrics = metrics
     app.state.pool = pool
     app.state.service = service
     install_handlers(app)
-    for module in (solve, sweep, health):
+    for module in (solve, sweep, health, page):
         app.include_router(module.router)
+    app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")
     app.add_middleware(BodyLimitMiddleware, limit=settings.max_body_bytes)
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
