@@ -253,7 +253,8 @@ class WingModel:
             else:
                 F_perp = F[:, 0]
             T = T - heave * (self.outboard @ F_perp)
-        return {"F": F, "Fz": Fz, "tau": tau, "r": r, "S": S, "M": M, "T": T}
+        return {"F": F, "Fz": Fz, "tau": tau, "r": r, "S": S, "M": M, "T": T,
+                "heave": heave if heave is not None else np.zeros(self.N)}
 
     def check_panel_order(self, vortex_centers, legacy: bool) -> None:
         """AeroSandbox's panel order: right half first, p = i nc + j (strip i root to tip, j LE to TE)."""
@@ -382,6 +383,11 @@ def generate(case: dict) -> dict:
     if trim is not None:
         opti.subject_to(aero["L"] == W)
 
+    jacobian = None
+    if extended:
+        # Square system's Jacobian, to compare det signs with the unloaded structure (q -> 0).
+        jacobian = casadi.Function("J", [opti.x, opti.p], [casadi.jacobian(opti.g, opti.x)])
+
     equilibria = []
     failures = []
     last_sol = None
@@ -423,6 +429,7 @@ def generate(case: dict) -> dict:
         if extended:
             eq.update(_extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic,
                                        xsec_twist, theta))
+            eq["jacobian_det_sign_vs_unloaded"] = _det_sign_vs_unloaded(jacobian, sol, opti, V)
         equilibria.append(eq)
         extra = f", alpha = {eq['alpha_deg']:.6g} deg" if trim is not None else ""
         print(
@@ -468,10 +475,14 @@ def _extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic, 
     F = np.asarray(sol(loads["F"]), dtype=float)
     tau = np.asarray(sol(loads["tau"]), dtype=float).ravel()
     vc = np.asarray(sol(loads["r"]), dtype=float)
-    model.check_panel_order(vc, legacy=False)  # the deformed mesh keeps the order
+    model.check_panel_order(sol(vlm.vortex_centers), legacy=False)  # the deformed mesh too
     stream = np.asarray(sol(xsec_twist), dtype=float).ravel()
     wing_num = sol(wing)  # the deformed wing, numeric
     stats = sol.stats()
+    _check_loads(model, F, vc, np.asarray(sol(loads["S"]), dtype=float).ravel(),
+                 np.asarray(sol(loads["M"]), dtype=float).ravel(),
+                 np.asarray(sol(loads["T"]), dtype=float).ravel(),
+                 np.asarray(sol(loads["heave"]), dtype=float).ravel())
     return {
         "alpha_deg": float(sol(alpha)) if alpha is not None else model.alpha,
         "phi_deg": _floats(sol(phi)),
@@ -491,6 +502,41 @@ def _extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic, 
         "return_status": stats.get("return_status"),
         "inf_pr": _final_inf_pr(sol),
     }
+
+
+def _det_sign_vs_unloaded(jacobian, sol, opti, V) -> int:
+    """sign(det J(x*, V)) * sign(det J(x*, V -> 0)): +1 if no real eigenvalue of the coupled
+    Jacobian has crossed zero between the unloaded structure and this equilibrium (no fold
+    between them), -1 otherwise."""
+    x = sol.value(opti.x)
+    signs = []
+    for v in (float(V), 1e-6):
+        J = np.array(jacobian(x, v), dtype=float)
+        sign, _ = np.linalg.slogdet(J)
+        signs.append(sign)
+    return int(signs[0] * signs[1])
+
+
+def _check_loads(model: WingModel, F, r, S, M, T, heave) -> None:
+    """Recompute S, M, T from the numeric panel forces with the literal definitions (a check on
+    the symbolic shortcuts): for station i, the panels of strips >= i, e_s = (sin, cos, 0),
+    r_i = (y_i tan(sweep), y_i, 0) (+ (0, 0, u_i) for the deformed torque axis),
+    M_i = sum Fz ((r_p - r_i) . e_s), T_i = sum ((r_p - r_i) x F_p) . e_s."""
+    e_s = np.array([model.sin_l, model.cos_l, 0.0])
+    strips = np.arange(model.n_right) // model.nc
+    scale = max(1.0, float(np.max(np.abs(F))) * float(np.max(np.abs(r))))
+    for i in range(model.N):
+        sel = strips >= i
+        r_i = np.array([model.ea_x[i], model.ys[i], 0.0])
+        if model.torque_axis == "deformed":
+            r_i = r_i + np.array([0.0, 0.0, heave[i]])
+        arm = r[sel] - r_i
+        S_i = float(np.sum(F[sel, 2]))
+        M_i = float(np.sum(F[sel, 2] * (arm @ e_s)))
+        T_i = float(np.sum(np.cross(arm, F[sel]) @ e_s))
+        err = max(abs(S_i - S[i]), abs(M_i - M[i]), abs(T_i - T[i]))
+        if err > 1e-10 * scale * max(1, model.n_right):
+            raise RuntimeError(f"load check failed at station {i}: {err:g}")
 
 
 def _rigid_trim(model: WingModel, wing_jig, W: float, attempts, options) -> list[dict]:
