@@ -30,9 +30,10 @@ Input: a case file (JSON object)
     velocities        [m/s] airspeeds, solved in this order
     fail_velocities   [m/s], optional: airspeeds expected to have no equilibrium; attempted after
                       `velocities`, in order, and recorded under `failures` if IPOPT fails
-    airfoil           str, optional, default "dae11" (the study's). Without the extended keys below
-                      it must have zero camber at x/c = 0 and 1 (dae11, naca0012, ...) for flexwing's
-                      flat-plate model; with them any AeroSandbox airfoil (its camber is recorded).
+    airfoil           str, optional, default "dae11" (the study's). Without the extended keys
+                      below it must have zero camber at x/c = 0 and 1 (dae11, naca0012, ...) for
+                      flexwing's flat-plate model; with them any AeroSandbox airfoil (its camber
+                      is recorded).
   Extended keys (any one of them switches the output to the extended format, below):
     sweep_deg             [deg] sweep of the elastic axis, positive aft (default 0). The elastic
                           axis is the line x = y tan(sweep) in the wing plane; sections stay
@@ -42,8 +43,8 @@ Input: a case file (JSON object)
     torque_axis           "undeformed" (default) or "deformed": the load arms are measured from
                           the undeformed elastic-axis point (y tan(sweep), y, 0) or from the
                           heaved one (y tan(sweep), y, u)
-    trim                  {"lift": W}: alpha becomes a variable with aero["L"] == W [N, both halves];
-                          the rigid jig's trim alpha at each velocity is solved separately
+    trim                  {"lift": W}: alpha becomes a variable with aero["L"] == W [N, both
+                          halves]; the rigid jig's trim alpha at each velocity is solved separately
     ipopt_tol             IPOPT `tol` and `constr_viol_tol` (default: AeroSandbox's defaults, i.e.
                           IPOPT's tol 1e-8, as the study; every new case sets 1e-10)
   Design mode (issue 12): a case with key "optimize" (see `generate_design`):
@@ -70,7 +71,8 @@ Output: a reference file (JSON object, indent 1)
                   tip_heave [m], tip_twist_deg [deg]
     failures[]    {velocity, solved: false, message}: velocities where IPOPT found no solution
   Extended format (additions; per-panel arrays hold all P = (N-1) k right-half panels in
-  AeroSandbox's order, panel p = i k + j: strip i root to tip, chordwise j leading to trailing edge):
+  AeroSandbox's order, panel p = i k + j: strip i root to tip, chordwise j leading to trailing
+  edge):
     format        "extended-1"
     model         sweep_deg, chordwise_resolution, airfoil, torque_axis, jig_twist_deg (N,),
                   s (N,) [m] beam arc length y / cos(sweep), ea_x (N,) [m] y tan(sweep),
@@ -82,8 +84,9 @@ Output: a reference file (JSON object, indent 1)
     rigid         adds alpha_deg, Fx, Fy (P,), Fz is (P,), vortex_centers (P, 3), strip_Fz (N-1,)
     rigid_trim[]  (trim only) {velocity, alpha_deg, L, D, CL, iterations, solve_s}: the jig's trim
     equilibria[]  each adds: alpha_deg (the trimmed alpha when trimmed); phi_deg (N,) twist about
-                  the elastic axis (the structural unknown, identical to theta_deg, which keeps its
-                  old meaning); elastic_stream_twist_deg (N,) phi cos(sweep) - degrees(du) sin(sweep);
+                  the elastic axis (the structural unknown, identical to theta_deg, which keeps
+                  its old meaning); elastic_stream_twist_deg (N,) phi cos(sweep) - degrees(du)
+                  sin(sweep);
                   stream_twist_deg (N,) the WingXSec twist the flow sees = elastic + jig;
                   xyz_le (N, 3) deformed leading edges; camber_scale (N,) AeroSandbox's
                   sqrt(2 / (1 + cos)) factor on the camber at each section;
@@ -156,7 +159,9 @@ class WingModel:
             raise ValueError("sweep_deg must lie in (-60, 60)")
         lam = np.radians(self.sweep_deg)
         self.swept = self.sweep_deg != 0.0
-        self.sin_l, self.cos_l, self.tan_l = float(np.sin(lam)), float(np.cos(lam)), float(np.tan(lam))
+        self.sin_l = float(np.sin(lam))
+        self.cos_l = float(np.cos(lam))
+        self.tan_l = float(np.tan(lam))
         # Beam arc length along the elastic axis; at sweep 0 exactly the study's ys.
         self.s = self.ys / self.cos_l if self.swept else self.ys
         self.ea_x = self.ys * self.tan_l if self.swept else np.zeros(N)
@@ -183,7 +188,7 @@ class WingModel:
 
     # -- geometry ---------------------------------------------------------------------------
     def make_wing(self, heave=None, twist=None) -> asb.Wing:
-        """The study's make_wing: jig + heave [m] + streamwise section twist [deg] about the EA point.
+        """The study's make_wing: jig + heave [m] + streamwise twist [deg] about the EA point.
 
         `twist` is the WingXSec twist, i.e. everything the flow sees (elastic + jig).
         """
@@ -235,8 +240,9 @@ class WingModel:
         r = vlm.vortex_centers[:n, :]
         if self.swept:
             # Torque about the undeformed axis through the origin along e_s: moment about the
-            # origin dotted with e_s (the axis point's own term vanishes, EA_i is parallel to e_s).
-            tau = vlm.moments_geometry[:n, 0] * self.sin_l + vlm.moments_geometry[:n, 1] * self.cos_l
+            # origin dotted with e_s (the axis point's own term vanishes: EA_i is parallel to e_s).
+            m = vlm.moments_geometry
+            tau = m[:n, 0] * self.sin_l + m[:n, 1] * self.cos_l
             s_panel = r[:, 0] * self.sin_l + r[:, 1] * self.cos_l  # r_p . e_s
             s_station = self.s  # EA_i . e_s = y_i / cos(sweep)
         else:
@@ -247,17 +253,23 @@ class WingModel:
         M = self.outboard @ (Fz * s_panel) - s_station * S
         T = self.outboard @ tau
         if self.torque_axis == "deformed":
-            # Arms from (EA_i + u_i z): T_i -= u_i sum (z x F_p) . e_s; M is unchanged (z . e_s = 0).
-            if self.swept:
-                F_perp = F[:, 0] * self.cos_l - F[:, 1] * self.sin_l
-            else:
-                F_perp = F[:, 0]
+            # Arms from (EA_i + u_i z): T_i -= u_i sum (z x F_p) . e_s; M unchanged (z . e_s = 0).
+            F_perp = F[:, 0] * self.cos_l - F[:, 1] * self.sin_l if self.swept else F[:, 0]
             T = T - heave * (self.outboard @ F_perp)
-        return {"F": F, "Fz": Fz, "tau": tau, "r": r, "S": S, "M": M, "T": T,
-                "heave": heave if heave is not None else np.zeros(self.N)}
+        return {
+            "F": F,
+            "Fz": Fz,
+            "tau": tau,
+            "r": r,
+            "S": S,
+            "M": M,
+            "T": T,
+            "heave": heave if heave is not None else np.zeros(self.N),
+        }
 
     def check_panel_order(self, vortex_centers, legacy: bool) -> None:
-        """AeroSandbox's panel order: right half first, p = i nc + j (strip i root to tip, j LE to TE)."""
+        """AeroSandbox's panel order: right half first, p = i nc + j (strip i root to tip, j LE
+        to TE), then the left half, mirrored."""
         N, nc, n = self.N, self.nc, self.n_right
         vc = np.asarray(vortex_centers, dtype=float)
         if legacy:
@@ -427,8 +439,11 @@ def generate(case: dict) -> dict:
             "tip_twist_deg": float(theta_sol[-1]),
         }
         if extended:
-            eq.update(_extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic,
-                                       xsec_twist, theta))
+            eq.update(
+                _extended_fields(
+                    model, sol, wing, vlm, loads, aero, alpha, stream_elastic, xsec_twist, theta
+                )
+            )
             eq["jacobian_det_sign_vs_unloaded"] = _det_sign_vs_unloaded(jacobian, sol, opti, V)
         equilibria.append(eq)
         extra = f", alpha = {eq['alpha_deg']:.6g} deg" if trim is not None else ""
@@ -471,7 +486,7 @@ def _model_fields(model: WingModel, options) -> dict:
 
 
 def _extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic, xsec_twist, phi):
-    N, nc, n = model.N, model.nc, model.n_right
+    N, nc = model.N, model.nc
     F = np.asarray(sol(loads["F"]), dtype=float)
     tau = np.asarray(sol(loads["tau"]), dtype=float).ravel()
     vc = np.asarray(sol(loads["r"]), dtype=float)
@@ -479,10 +494,15 @@ def _extended_fields(model, sol, wing, vlm, loads, aero, alpha, stream_elastic, 
     stream = np.asarray(sol(xsec_twist), dtype=float).ravel()
     wing_num = sol(wing)  # the deformed wing, numeric
     stats = sol.stats()
-    _check_loads(model, F, vc, np.asarray(sol(loads["S"]), dtype=float).ravel(),
-                 np.asarray(sol(loads["M"]), dtype=float).ravel(),
-                 np.asarray(sol(loads["T"]), dtype=float).ravel(),
-                 np.asarray(sol(loads["heave"]), dtype=float).ravel())
+    _check_loads(
+        model,
+        F,
+        vc,
+        np.asarray(sol(loads["S"]), dtype=float).ravel(),
+        np.asarray(sol(loads["M"]), dtype=float).ravel(),
+        np.asarray(sol(loads["T"]), dtype=float).ravel(),
+        np.asarray(sol(loads["heave"]), dtype=float).ravel(),
+    )
     return {
         "alpha_deg": float(sol(alpha)) if alpha is not None else model.alpha,
         "phi_deg": _floats(sol(phi)),
@@ -605,7 +625,9 @@ def generate_design(case: dict) -> dict:
             phi = opti.variable(init_guess=np.zeros(N))
             du = None
             if model.swept:
-                du = opti.derivative_of(u, with_respect_to=model.s, derivative_init_guess=np.zeros(N))
+                du = opti.derivative_of(
+                    u, with_respect_to=model.s, derivative_init_guess=np.zeros(N)
+                )
             tw = model.stream_twist(phi, du) + jig
             wing = model.make_wing(heave=u, twist=tw)
         else:
@@ -616,8 +638,12 @@ def generate_design(case: dict) -> dict:
         if flexible:
             loads = model.loads(vlm, heave=u)
             if du is None:
-                du = opti.derivative_of(u, with_respect_to=model.s, derivative_init_guess=np.zeros(N))
-            opti.constrain_derivative(variable=du, with_respect_to=model.s, derivative=loads["M"] / model.EI)
+                du = opti.derivative_of(
+                    u, with_respect_to=model.s, derivative_init_guess=np.zeros(N)
+                )
+            opti.constrain_derivative(
+                variable=du, with_respect_to=model.s, derivative=loads["M"] / model.EI
+            )
             opti.constrain_derivative(
                 variable=phi, with_respect_to=model.s, derivative=np.degrees(loads["T"] / model.GJ)
             )
@@ -635,9 +661,14 @@ def generate_design(case: dict) -> dict:
             sol = _solve(prob["opti"], {}, options)
         except RuntimeError as error:
             message = str(error).splitlines()[-1] if str(error) else repr(error)
-            print(f"{label}: FAILED ({message}) after {time.perf_counter() - started:.1f} s", file=sys.stderr)
-            return None, {"label": label, "solved": False, "message": message,
-                          "solve_s": time.perf_counter() - started}
+            elapsed = time.perf_counter() - started
+            print(f"{label}: FAILED ({message}) after {elapsed:.1f} s", file=sys.stderr)
+            return None, {
+                "label": label,
+                "solved": False,
+                "message": message,
+                "solve_s": time.perf_counter() - started,
+            }
         solve_s = time.perf_counter() - started
         stats = sol.stats()
         aero = prob["aero"]
@@ -672,7 +703,8 @@ def generate_design(case: dict) -> dict:
             )
         print(
             f"{label}: D = {res['D']:.8g} N, L = {res['L']:.8g} N, tip total twist = "
-            f"{res['total_twist_deg'][-1]:.6g} deg ({res['iterations']} iterations, {solve_s:.1f} s)",
+            f"{res['total_twist_deg'][-1]:.6g} deg ({res['iterations']} iterations, "
+            f"{solve_s:.1f} s)",
             file=sys.stderr,
         )
         return sol, res
@@ -683,13 +715,17 @@ def generate_design(case: dict) -> dict:
     flex_prob = build(flexible=True)
     attempts = []
     flex_sol, flex_res = run(flex_prob, "flexible (from zeros)")
-    attempts.append({k: flex_res[k] for k in ("label", "solved", "solve_s") if k in flex_res}
-                    | {k: flex_res[k] for k in ("message", "iterations") if k in flex_res})
+    attempts.append(
+        {k: flex_res[k] for k in ("label", "solved", "solve_s") if k in flex_res}
+        | {k: flex_res[k] for k in ("message", "iterations") if k in flex_res}
+    )
     if flex_sol is None and rigid_sol is not None:
         flex_prob["opti"].set_initial(flex_prob["jig"], rigid_sol(rigid_prob["jig"]))
         flex_sol, flex_res = run(flex_prob, "flexible (from the rigid optimum)")
-        attempts.append({k: flex_res[k] for k in ("label", "solved", "solve_s") if k in flex_res}
-                        | {k: flex_res[k] for k in ("message", "iterations") if k in flex_res})
+        attempts.append(
+            {k: flex_res[k] for k in ("label", "solved", "solve_s") if k in flex_res}
+            | {k: flex_res[k] for k in ("message", "iterations") if k in flex_res}
+        )
 
     return {
         "case": case,
