@@ -60,7 +60,7 @@ def judge(
     q = flight.dynamic_pressure
     rigid = jig(system)
     stations, panels, totals = equilibrium_loads(
-        system, x, q, q * rigid.rigid_lift_per_q, rigid.unloaded
+        system, x, q, q * rigid.rigid_lift_per_q, q * rigid.rigid_panel_lift_per_q, rigid.unloaded
     )
     return Equilibrium(
         wing=system.wing,

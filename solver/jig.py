@@ -35,6 +35,7 @@ class Jig:
     state: (n,) u = u' = theta = 0 with the rigid wing's circulations.
     evaluation: r0, r1, J0, J1 at `state` (r0 = 0 there to round-off).
     rigid_lift_per_q: [m^2] the rigid wing's lift over q.
+    rigid_panel_lift_per_q: (N-1,) [m^2] its panels' vertical forces over q.
     unloaded: the jig carries no load worth the name: its circulation is below what
         `NEGLIGIBLE_INCIDENCE` of incidence would give (alpha = 0 on an uncambered, untwisted
         wing, or within round-off of it). It stays an equilibrium, to the tolerance, at every q
@@ -45,6 +46,7 @@ class Jig:
     state: np.ndarray
     evaluation: Evaluation
     rigid_lift_per_q: float
+    rigid_panel_lift_per_q: np.ndarray
     unloaded: bool
 
     @property
@@ -57,12 +59,13 @@ def _solve_jig(system: CoupledSystem) -> Jig:
     at_zero = system.evaluate(zero)
     state = -np.linalg.solve(at_zero.jacobian0, at_zero.r0)
     state.setflags(write=False)
-    lift_per_q, _ = lift_and_drag(panel_loads(system, state, 1.0), system.alpha)
+    per_q = panel_loads(system, state, 1.0)
+    lift_per_q, _ = lift_and_drag(per_q, system.alpha)
     circulation = state[system.layout.circulation]
     unloaded = bool(
         np.max(np.abs(circulation)) <= math.pi * system.wing.mean_chord * NEGLIGIBLE_INCIDENCE
     )
-    return Jig(state, system.evaluate(state), lift_per_q, unloaded)
+    return Jig(state, system.evaluate(state), lift_per_q, per_q.force[2].copy(), unloaded)
 
 
 def jig(system: CoupledSystem) -> Jig:

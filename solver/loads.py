@@ -66,12 +66,17 @@ def _amplification(lift: float, rigid_lift: float | None) -> float | None:
 
 
 def equilibrium_loads(
-    system: CoupledSystem, x: np.ndarray, q: float, rigid_lift: float, unloaded: bool = False
+    system: CoupledSystem,
+    x: np.ndarray,
+    q: float,
+    rigid_lift: float,
+    rigid_panel_lift: np.ndarray,
+    unloaded: bool = False,
 ) -> tuple[Stations, Panels, Totals]:
     """Every reported quantity of the state x at dynamic pressure q [Pa].
 
-    rigid_lift: [N] the rigid jig's; `unloaded`: it is negligible (`solver.jig`), so the lift
-    amplification is not defined.
+    rigid_lift: [N] the rigid jig's, and rigid_panel_lift (N-1,) [N] its panels'; `unloaded`:
+    it is negligible (`solver.jig`), so the lift amplification is not defined.
     """
     wing, layout = system.wing, system.layout
     loads = panel_loads(system, x, q)
@@ -91,11 +96,13 @@ def equilibrium_loads(
         bending_moment=bending_moment,
         torque=torque,
     )
+    widths = np.diff(wing.y)
     panels = Panels(
         y=panel_y,
         lift=lift_force,
-        lift_per_span=lift_force / np.diff(wing.y),
+        lift_per_span=lift_force / widths,
         torque=loads.torque,
+        rigid_lift_per_span=rigid_panel_lift / widths,
     )
     area = wing.planform_area
     deformed_area = _deformed_area(wing.chord, loads.vertex)

@@ -70,6 +70,9 @@ class Panels:
     lift: np.ndarray = quantity("N", "vertical force on the panel")
     lift_per_span: np.ndarray = quantity("N/m", "vertical force per jig strip width")
     torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+    rigid_lift_per_span: np.ndarray = quantity(
+        "N/m", "the rigid jig's vertical force per strip width at the same condition"
+    )
 
 
 @dataclass(frozen=True)

@@ -161,7 +161,7 @@ def test_page_loads_clean_and_draws_every_figure(visit: Callable[..., Visit]) ->
     )
     assert all(f > r > 0 for f, r in zip(flexible, rigid, strict=True))  # wash-in: more lift
     assert spanwise["series"]["twist"]["y"][-1] == pytest.approx(1.708, abs=1e-3)
-    assert "10^9" in tab.page.inner_text("#rigid-note")
+    assert "rigid_lift_per_span" in tab.page.inner_text("#rigid-note")
 
     loads = tab.figure("14.3")
     assert len(loads["series"]["bending_moment"]["y"]) == len(loads["series"]["torque"]["y"]) == 30
@@ -275,7 +275,7 @@ def test_a_negative_chord_is_reported_next_to_its_cell(visit: Callable[..., Visi
     assert error_id is not None
     error = page.locator(f"#{error_id}")
     assert error.is_visible()
-    assert "greater than 0" in error.inner_text()
+    assert "greater than or equal to 0.001" in error.inner_text()
     # Next to that input: in the same table cell, right after it.
     assert page.evaluate(
         "id => document.getElementById(id).previousElementSibling.id", error_id
@@ -299,7 +299,7 @@ def test_a_negative_root_chord_in_the_planform_is_reported_there(
     page.press("#f-root_chord", "Enter")
     tab.wait_runs("failed", before)
     assert page.get_attribute("#f-root_chord", "aria-invalid") == "true"
-    assert "station 0 (chord): Input should be greater than 0" in page.inner_text(
+    assert "station 0 (chord): Input should be greater than or equal to 0.001" in page.inner_text(
         "#f-root_chord-error"
     )
     assert tab.errors_but(422) == []
@@ -358,7 +358,11 @@ def test_downloads_results_and_figures(visit: Callable[..., Visit]) -> None:
         page.click("#download-json")
     results = json.loads(Path(info.value.path()).read_text())
     assert results["solve"]["response"]["totals"]["lift"] == pytest.approx(304.125, abs=1e-3)
-    assert results["solve"]["rigid"]["stiffness_factor"] == 1e9
+    rigid_panels = results["solve"]["rigid"]["panels"]
+    assert (
+        rigid_panels["lift_per_span"]
+        == results["solve"]["response"]["panels"]["rigid_lift_per_span"]
+    )
     page.click("#json-io summary")
     with page.expect_download() as info:
         page.click("#json-download")

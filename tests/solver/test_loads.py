@@ -87,3 +87,16 @@ def test_the_reported_loads_satisfy_the_beam_equations(cruise):
     assert np.max(np.abs(np.diff(s.slope) - trapezoid(curvature))) < TWO_SOLVES
     twist_rate = np.degrees(s.torque / wing.torsional_stiffness)
     assert np.max(np.abs(np.diff(s.twist) - trapezoid(twist_rate))) < TWO_SOLVES
+
+
+def test_the_rigid_distribution_is_the_stiff_wings():
+    """panels.rigid_lift_per_span: the jig's own lattice solution; a wing a million times
+    stiffer deforms by ~1e-6 of the study wing's, so its lift per span matches to ~1e-6."""
+    stiff = solver.solve(study_wing(stiffness_scale=1e6), flight(12.0))
+    np.testing.assert_allclose(
+        stiff.panels.lift_per_span, stiff.panels.rigid_lift_per_span, rtol=2e-6
+    )
+    cruise = solver.solve(study_wing(), flight(12.0))
+    np.testing.assert_array_equal(
+        cruise.panels.rigid_lift_per_span, stiff.panels.rigid_lift_per_span
+    )

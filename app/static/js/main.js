@@ -15,10 +15,6 @@ import {
 import * as figures from "./figures.js";
 import { StationTable, stationsFromPlanform } from "./wing.js";
 
-// The rigid wing's lift distribution comes from a second /solve of the same wing with both
-// stiffnesses multiplied by this factor (its deformation is ~1e-9 of the flexible wing's).
-const RIGID_STIFFNESS_FACTOR = 1e9;
-
 const $ = (id) => document.getElementById(id);
 
 const state = {
@@ -336,38 +332,26 @@ function setIdle(message) {
 
 // ------------------------------------------------------------------------------------- solve
 
-function stiffened(w) {
-  const scale = (values) => (Array.isArray(values) ? values.map((v) => (v == null ? v : v * RIGID_STIFFNESS_FACTOR)) : values);
-  return { ...w, bending_stiffness: scale(w.bending_stiffness), torsional_stiffness: scale(w.torsional_stiffness) };
-}
-
 async function runSolve() {
   if (state.busy) return;
   clearErrors();
   const request = solveRequest();
   setBusy(`Solving at ${request.flight.velocity} m/s`);
-  const rigidRequest = { ...request, wing: stiffened(request.wing) };
-  const [flexible, rigid] = await Promise.allSettled([api.solve(request), api.solve(rigidRequest)]);
-  if (flexible.status === "rejected") {
+  let response;
+  try {
+    response = await api.solve(request);
+  } catch (error) {
     state.runs.failed++;
     setIdle("Solve failed.");
-    if (flexible.reason instanceof api.ProblemError) showProblem(flexible.reason, request.flight.velocity);
-    else throw flexible.reason;
+    if (error instanceof api.ProblemError) showProblem(error, request.flight.velocity);
+    else throw error;
     return;
   }
-  const response = flexible.value;
-  let rigidNote;
-  let rigidResponse = null;
-  if (rigid.status === "fulfilled") {
-    rigidResponse = rigid.value;
-    const diff = Math.abs(rigidResponse.totals.lift - response.totals.rigid_lift) / Math.abs(response.totals.rigid_lift);
-    rigidNote =
-      `Rigid: the same wing solved again with EI and GJ multiplied by 10^${Math.log10(RIGID_STIFFNESS_FACTOR)} ` +
-      `(a second /solve request); its total lift matches this answer's totals.rigid_lift to ${diff.toExponential(1)} relative.`;
-  } else {
-    rigidNote = `Rigid distribution unavailable: ${rigid.reason?.message ?? rigid.reason}.`;
-  }
-  state.solve = { request, response, rigid: rigidResponse, rigidNote };
+  const rigid = { panels: { y: response.panels.y, lift_per_span: response.panels.rigid_lift_per_span } };
+  const rigidNote =
+    "Rigid: the jig shape's own lattice solution at the same condition (panels.rigid_lift_per_span), " +
+    `${f(response.totals.rigid_lift, 1)} N in all.`;
+  state.solve = { request, response, rigid, rigidNote };
   state.runs.solve++;
   renderSolve();
   setIdle(`Solved at ${request.flight.velocity} m/s in ${(response.solver.seconds * 1000).toFixed(1)} ms of solver time.`);
@@ -547,7 +531,7 @@ function downloadResults() {
     solve: state.solve && {
       request: state.solve.request,
       response: state.solve.response,
-      rigid: { note: state.solve.rigidNote, stiffness_factor: RIGID_STIFFNESS_FACTOR, response: state.solve.rigid },
+      rigid: { note: state.solve.rigidNote, panels: state.solve.rigid.panels },
     },
     sweep: state.sweep,
   });
