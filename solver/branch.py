@@ -70,7 +70,10 @@ class _CachedTracer:
     def __init__(self, system: CoupledSystem) -> None:
         start = jig(system)
         self.tracer = BranchTracer(
-            system.evaluate, np.array(start.state), system.scale(pressure_scale(system))
+            system.evaluate,
+            system.residual,
+            np.array(start.state),
+            system.scale(pressure_scale(system)),
         )
         self.lock = threading.Lock()
 

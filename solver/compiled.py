@@ -117,6 +117,15 @@ class CompiledModel:
         self.compiled = False
         self._compile_thread: threading.Thread | None = None
 
+    @classmethod
+    def from_library(cls, layout: Layout, library: Path) -> CompiledModel:
+        """The model served by a compiled library: no symbolic build at all."""
+        model = cls.__new__(cls)
+        model.layout = layout
+        model._compile_thread = None
+        model._use_library(library)
+        return model
+
     def evaluate(self, x: np.ndarray, p: np.ndarray) -> Evaluation:
         """Residual parts and exact Jacobians at x (about 4x the cost of `residual`)."""
         r0, r1, j0, j1 = self._calls[0](x, p)
@@ -179,6 +188,10 @@ class CompiledModel:
 def build_model(layout: Layout) -> CompiledModel:
     """A model for `layout`: compiled if a library exists on disk, else the virtual machine,
     compiling in the background when compilation is enabled."""
+    library = _library_path(layout)
+    if library.exists():
+        with contextlib.suppress(OSError, RuntimeError):
+            return CompiledModel.from_library(layout, library)
     functions = _symbolic_functions(layout)
     model = CompiledModel(layout, functions)
     model.refresh()

@@ -26,7 +26,7 @@ def stability_of(
 ) -> Stability:
     """The verdict at the state whose Jacobians `evaluation` holds, at `flight`'s q."""
     q = flight.dynamic_pressure
-    local = divergence_pressure(evaluation, system.layout.load_rows)
+    local = divergence_pressure(evaluation, system.layout, jig(system).beam)
     linear = linear_divergence_pressure(system.wing)
     return Stability(
         stable=local is None or local > q,

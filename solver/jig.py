@@ -17,7 +17,7 @@ from solver.cache import cached
 from solver.evaluation import Evaluation
 from solver.inputs import Wing
 from solver.loads import lift_and_drag, panel_loads
-from solver.stability import divergence_pressure
+from solver.stability import beam_response, divergence_pressure
 from solver.system import CoupledSystem
 
 __all__ = ["NEGLIGIBLE_INCIDENCE", "Jig", "jig", "linear_divergence_pressure"]
@@ -36,6 +36,8 @@ class Jig:
     evaluation: r0, r1, J0, J1 at `state` (r0 = 0 there to round-off).
     rigid_lift_per_q: [m^2] the rigid wing's lift over q.
     rigid_panel_lift_per_q: (N-1,) [m^2] its panels' vertical forces over q.
+    beam: the clamped beam's response to its load rows (`solver.stability.beam_response`),
+        the same at every state: what every stability verdict of this wing reuses.
     unloaded: the jig carries no load worth the name: its circulation is below what
         `NEGLIGIBLE_INCIDENCE` of incidence would give (alpha = 0 on an uncambered, untwisted
         wing, or within round-off of it). It stays an equilibrium, to the tolerance, at every q
@@ -48,10 +50,11 @@ class Jig:
     rigid_lift_per_q: float
     rigid_panel_lift_per_q: np.ndarray
     unloaded: bool
+    beam: np.ndarray
 
     @property
     def nbytes(self) -> int:
-        return self.state.nbytes + self.evaluation.nbytes
+        return self.state.nbytes + self.evaluation.nbytes + self.beam.nbytes
 
 
 def _solve_jig(system: CoupledSystem) -> Jig:
@@ -65,7 +68,9 @@ def _solve_jig(system: CoupledSystem) -> Jig:
     unloaded = bool(
         np.max(np.abs(circulation)) <= math.pi * system.wing.mean_chord * NEGLIGIBLE_INCIDENCE
     )
-    return Jig(state, system.evaluate(state), lift_per_q, per_q.force[2].copy(), unloaded)
+    evaluation = system.evaluate(state)
+    beam = beam_response(evaluation, system.layout)
+    return Jig(state, evaluation, lift_per_q, per_q.force[2].copy(), unloaded, beam)
 
 
 def jig(system: CoupledSystem) -> Jig:
@@ -77,7 +82,7 @@ def _linear_divergence(wing: Wing) -> float | None:
     system = CoupledSystem(wing, 0.0)
     # At alpha = 0 an uncambered jig carries no circulation: the classical linear problem.
     at_rest = system.evaluate(np.zeros(system.layout.n_unknowns))
-    return divergence_pressure(at_rest, system.layout.load_rows)
+    return divergence_pressure(at_rest, system.layout)
 
 
 def linear_divergence_pressure(wing: Wing) -> float | None:

@@ -69,6 +69,16 @@ class Layout:
         return slice(3 + 3 * self.n_panels, 3 + 4 * self.n_panels)
 
     @property
+    def structure(self) -> slice:
+        """Unknowns of the beam: heave, slope and twist."""
+        return slice(0, 3 * self.n)
+
+    @property
+    def structure_rows(self) -> slice:
+        """Equations of the beam: clamps, kinematics, bending, torsion."""
+        return slice(0, 3 * self.n)
+
+    @property
     def load_rows(self) -> np.ndarray:
         """Equations in which the aerodynamic loads appear (J1's only non-zero rows)."""
         rows = np.arange(self.n_unknowns)

@@ -32,9 +32,10 @@ class CoupledSystem:
     def layout(self) -> Layout:
         return Layout(self.wing.n_stations)
 
-    @property
+    @cached_property
     def model(self) -> CompiledModel:
-        # Looked up on every use: the cache may have swapped in compiled code, or evicted it.
+        # Looked up once per system (a system lives for one request): the model swaps compiled
+        # code in by itself, and `model_for` picks up a library another process compiled.
         return model_for(self.layout)
 
     @cached_property
