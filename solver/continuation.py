@@ -165,14 +165,13 @@ class Branch:
 
 
 def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: float) -> np.ndarray:
-    """(4N,) scale factors z = scale * w (see the module docstring)."""
-    n = layout.n
-    rms = math.sqrt(n)
+    """(n + 1,) scale factors z = scale * w (see the module docstring)."""
+    rms_stations, rms_panels = math.sqrt(layout.n), math.sqrt(layout.n_panels)
     scale = np.empty(layout.n_unknowns + 1)
-    scale[layout.heave] = semispan * rms
-    scale[layout.slope] = rms
-    scale[layout.twist] = math.degrees(1.0) * rms
-    scale[layout.circulation] = mean_chord * rms
+    scale[layout.heave] = semispan * rms_stations
+    scale[layout.slope] = rms_stations
+    scale[layout.twist] = math.degrees(1.0) * rms_stations
+    scale[layout.circulation] = mean_chord * rms_panels
     scale[-1] = q_scale
     return scale
 
