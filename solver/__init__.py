@@ -29,6 +29,7 @@ from solver.inputs import (
     MIN_STATIONS,
     FlightCondition,
     SolverOptions,
+    TrimCondition,
     Wing,
 )
 from solver.layout import Layout
@@ -50,6 +51,7 @@ from solver.results import (
 )
 from solver.solve import solve
 from solver.sweep import sweep
+from solver.trim import rigid_trim_alpha, trim, trim_sweep, trimmed_divergence_limit
 from solver.warm import warm_up
 
 __all__ = [
@@ -77,6 +79,7 @@ __all__ = [
     "SweepPoint",
     "SweepResult",
     "Totals",
+    "TrimCondition",
     "Wing",
     "cache_info",
     "clear_caches",
@@ -85,7 +88,11 @@ __all__ = [
     "fit_divergence",
     "linear_divergence",
     "linear_divergence_pressure",
+    "rigid_trim_alpha",
     "solve",
     "sweep",
+    "trim",
+    "trim_sweep",
+    "trimmed_divergence_limit",
     "warm_up",
 ]

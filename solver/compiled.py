@@ -149,8 +149,15 @@ class CompiledModel:
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(r0, r1) at x, without derivatives."""
-        r0, r1 = self._calls[1](x, p)
+        r0, r1, _ = self._calls[1](x, p)
         return r0.ravel(), r1.ravel()
+
+    def residual_with_lift(
+        self, x: np.ndarray, p: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) at x, and the lift of both halves per unit q [m^2], without derivatives."""
+        r0, r1, lift = self._calls[1](x, p)
+        return r0.ravel(), r1.ravel(), float(lift[0, 0])
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q about the undeformed elastic axis,

@@ -52,16 +52,20 @@ def linear_divergence(
 
 
 def fit_divergence(
-    equilibria: Sequence[Equilibrium], amplification: Literal["CL", "lift"] = "CL"
+    equilibria: Sequence[Equilibrium],
+    amplification: Literal["CL", "lift", "lift_effectiveness"] = "CL",
 ) -> FitDivergence:
     """The study's fit: least squares 1/A = intercept + slope q over the stable equilibria.
 
     amplification "CL": A = CL / CL_rigid with CL on the deformed planform area and CL_rigid on
     the jig area, as the study computes it (its numbers: intercept 0.998, q_div 419 Pa); "lift":
-    A = L / L_rigid. V_div uses the density of the first equilibrium.
+    A = L / L_rigid; "lift_effectiveness": A = the trimmed wing's flexible over rigid lift-curve
+    slope. V_div uses the density of the first equilibrium.
     """
-    if amplification not in ("CL", "lift"):
-        raise ValueError(f"amplification must be 'CL' or 'lift', got {amplification!r}")
+    if amplification not in ("CL", "lift", "lift_effectiveness"):
+        raise ValueError(
+            f"amplification must be 'CL', 'lift' or 'lift_effectiveness', got {amplification!r}"
+        )
     # In order of q: the fit's round-off must not depend on the order the points were asked in.
     stable = sorted(
         (e for e in equilibria if e.stability.stable and _amplification(e, amplification) > 0),
@@ -103,6 +107,9 @@ def _amplification(equilibrium: Equilibrium, amplification: str) -> float:
     unloaded jig when the whole residual lies within tolerance.
     """
     totals = equilibrium.totals
+    if amplification == "lift_effectiveness":
+        ratio = totals.lift_effectiveness
+        return ratio if ratio is not None and math.isfinite(ratio) else math.nan
     if totals.lift_amplification is None:
         return math.nan
     ratio = totals.lift_amplification

@@ -9,8 +9,8 @@ import numpy as np
 
 from solver.evaluation import Evaluation
 from solver.inputs import FlightCondition, SolverOptions
-from solver.jig import jig, linear_pressure
-from solver.loads import equilibrium_loads
+from solver.jig import at_rest, jig, linear_pressure
+from solver.loads import RigidLoads, equilibrium_loads
 from solver.results import Equilibrium, SolveInfo, Stability
 from solver.stability import divergence_pressure
 from solver.system import CoupledSystem
@@ -26,7 +26,7 @@ def stability_of(
 ) -> Stability:
     """The verdict at the state whose Jacobians `evaluation` holds, at `flight`'s q."""
     q = flight.dynamic_pressure
-    local = divergence_pressure(evaluation, system.layout, jig(system).beam)
+    local = divergence_pressure(evaluation, system.layout, at_rest(system).beam)
     linear = linear_pressure(system)
     return Stability(
         stable=local is None or local > q,
@@ -52,17 +52,21 @@ def judge(
     warm_start: bool,
     started: float,
     branch: Literal["jig", "other"] = "jig",
+    rigid: RigidLoads | None = None,
 ) -> Equilibrium:
     """The converged state x at `flight` with every reported quantity and its verdict.
 
     `evaluation`: r0, r1 at x, Jacobians at x or one Newton step away; `started`: the
-    `time.perf_counter()` at which the solve began.
+    `time.perf_counter()` at which the solve began; `rigid`: the rigid loads per unit q to
+    compare with (default: the jig's at the same alpha).
     """
     q = flight.dynamic_pressure
-    rigid = jig(system)
-    stations, panels, totals = equilibrium_loads(
-        system, x, q, q * rigid.rigid_lift_per_q, q * rigid.rigid_strip_lift_per_q, rigid.unloaded
-    )
+    if rigid is None:
+        at_alpha = jig(system)
+        rigid, unloaded = at_alpha.rigid, at_alpha.unloaded
+    else:
+        unloaded = False
+    stations, panels, totals = equilibrium_loads(system, x, q, rigid, unloaded)
     return Equilibrium(
         wing=system.wing,
         flight=flight,

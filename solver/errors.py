@@ -52,16 +52,24 @@ class NoEquilibrium(SolverError):
             None if it has none below the requested speed (e.g. the branch continues but is
             statically unstable there).
         detail: why, beyond the fold speed.
+        where: what is missing, when not the jig branch's stable equilibrium (trimmed flight).
     """
 
-    def __init__(self, velocity: float, fold_velocity: float | None, detail: str = "") -> None:
+    def __init__(
+        self,
+        velocity: float,
+        fold_velocity: float | None,
+        detail: str = "",
+        where: str | None = None,
+    ) -> None:
         self.velocity = velocity
         self.fold_velocity = fold_velocity
         self.detail = detail
-        where = (
-            f"beyond the fold of the equilibrium branch at {fold_velocity:.6g} m/s"
-            if fold_velocity is not None
-            else "the equilibrium branch from the jig shape has no stable equilibrium there"
-        )
+        if where is None:
+            where = (
+                f"beyond the fold of the equilibrium branch at {fold_velocity:.6g} m/s"
+                if fold_velocity is not None
+                else "the equilibrium branch from the jig shape has no stable equilibrium there"
+            )
         message = f"no static aeroelastic equilibrium at V = {velocity:g} m/s: {where}"
         super().__init__(message + (f" ({detail})" if detail else ""))

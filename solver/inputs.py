@@ -26,6 +26,7 @@ __all__ = [
     "MIN_STATIONS",
     "FlightCondition",
     "SolverOptions",
+    "TrimCondition",
     "Wing",
 ]
 
@@ -251,6 +252,50 @@ class FlightCondition:
     def velocity_for(dynamic_pressure: float, density: float) -> float:
         """V = sqrt(2 q / rho) [m/s]."""
         return math.sqrt(2.0 * dynamic_pressure / density)
+
+
+@dataclass(frozen=True)
+class TrimCondition:
+    """Steady, symmetric flight at a given lift: the angle of attack is solved for.
+
+    Attributes:
+        velocity: [m/s] airspeed, > 0.
+        lift: [N] lift of both halves to carry (a weight times a load factor), finite, nonzero.
+        density: [kg/m^3] air density, > 0.
+    """
+
+    velocity: float
+    lift: float
+    density: float = ISA_SEA_LEVEL_DENSITY
+
+    def __post_init__(self) -> None:
+        for name in ("velocity", "lift", "density"):
+            value = getattr(self, name)
+            if not _is_number(value):
+                raise InvalidInput(name, "must be a number")
+            if not math.isfinite(value):
+                raise InvalidInput(name, "must be a finite number")
+        if self.velocity <= 0:
+            raise InvalidInput("velocity", "must be positive")
+        if self.density <= 0:
+            raise InvalidInput("density", "must be positive")
+        if self.lift == 0:
+            raise InvalidInput(
+                "lift", "must be nonzero (zero lift is the jig at its zero-lift alpha)"
+            )
+        q = self.dynamic_pressure
+        if not (math.isfinite(q) and q > 0):
+            raise InvalidInput(
+                "velocity", f"the dynamic pressure rho V^2 / 2 = {q:g} Pa is not a positive number"
+            )
+
+    @property
+    def dynamic_pressure(self) -> float:
+        """q = rho V^2 / 2 [Pa]."""
+        return 0.5 * self.density * self.velocity * self.velocity
+
+    def at_velocity(self, velocity: float) -> TrimCondition:
+        return TrimCondition(velocity=velocity, lift=self.lift, density=self.density)
 
 
 @dataclass(frozen=True)

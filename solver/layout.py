@@ -111,6 +111,11 @@ class Layout:
             [*arrays, np.ravel(camber), [alpha_deg, sweep_deg, 1.0 if deformed_axis else 0.0]]
         )
 
+    @property
+    def alpha_index(self) -> int:
+        """Where alpha [deg] sits in the parameter vector."""
+        return self.n_parameters - 3
+
     def split(self, p):  # type: ignore[no-untyped-def]
         """The parameter vector's parts (symbolic or numeric): y, chord, elastic_axis, EI, GJ,
         jig (N each), camber (N, k + 1), alpha, sweep, deformed_axis."""

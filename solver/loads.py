@@ -14,10 +14,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.geometry import DEG
+from solver.inputs import Wing
 from solver.results import Panels, Stations, Totals
 from solver.system import CoupledSystem
 
-__all__ = ["PanelLoads", "equilibrium_loads", "lift_and_drag", "outboard_sum", "panel_loads"]
+__all__ = [
+    "PanelLoads",
+    "RigidLoads",
+    "equilibrium_loads",
+    "lift_and_drag",
+    "outboard_sum",
+    "panel_loads",
+    "rigid_loads",
+]
 
 
 def outboard_sum(strip_values: np.ndarray) -> np.ndarray:
@@ -58,6 +67,40 @@ def lift_and_drag(loads: PanelLoads, alpha_deg: float) -> tuple[float, float]:
     )
 
 
+def _bending_moment(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
+    """(N,) [N m] flapwise bending moment about each station's elastic-axis point, from the
+    panels' vertical forces at their spanwise arms along the elastic axis."""
+    sweep = wing.sweep * DEG
+    e_s = np.array([math.sin(sweep), math.cos(sweep), 0.0])
+    fz = loads.per_strip(loads.force[2], k)
+    arc = wing.y / math.cos(sweep)  # [m] along the elastic axis
+    return outboard_sum(loads.per_strip(loads.force[2] * (e_s @ loads.center), k)) - arc * (
+        outboard_sum(fz)
+    )
+
+
+@dataclass(frozen=True)
+class RigidLoads:
+    """The rigid jig's loads per unit q: what a flexible answer is compared with.
+
+    lift: [m^2] both halves; strip_lift: (N-1,) [m^2] the strips' vertical forces;
+    root_bending_moment: [m^3] at the root station. Times q [Pa] gives N and N m.
+    """
+
+    lift: float
+    strip_lift: np.ndarray
+    root_bending_moment: float
+
+
+def rigid_loads(system: CoupledSystem, state: np.ndarray) -> RigidLoads:
+    """The rigid jig's loads per unit q at `state` (an undeformed state of `system`)."""
+    per_q = panel_loads(system, state, 1.0)
+    lift, _ = lift_and_drag(per_q, system.alpha)
+    strips = per_q.per_strip(per_q.force[2], system.chordwise)
+    root = float(_bending_moment(system.wing, per_q, system.chordwise)[0])
+    return RigidLoads(lift, strips, root)
+
+
 def _deformed_area(chord: np.ndarray, quarter_chord: np.ndarray) -> float:
     """[m^2] AeroSandbox's planform area: mean chord times y-z distance of quarter-chord points."""
     span_yz = np.hypot(np.diff(quarter_chord[1]), np.diff(quarter_chord[2]))
@@ -76,27 +119,25 @@ def equilibrium_loads(
     system: CoupledSystem,
     x: np.ndarray,
     q: float,
-    rigid_lift: float,
-    rigid_strip_lift: np.ndarray,
+    rigid: RigidLoads,
     unloaded: bool = False,
 ) -> tuple[Stations, Panels, Totals]:
     """Every reported quantity of the state x at dynamic pressure q [Pa].
 
-    rigid_lift: [N] the rigid jig's, and rigid_strip_lift (N-1,) [N] its strips'; `unloaded`:
-    it is negligible (`solver.jig`), so the lift amplification is not defined.
+    rigid: the rigid jig's loads per unit q that the answer is compared with (at the same alpha,
+    or trimmed to the same lift); `unloaded`: they are negligible (`solver.jig`), so the lift
+    amplification is not defined.
     """
     wing, layout, k = system.wing, system.layout, system.chordwise
     loads = panel_loads(system, x, q)
     lift, drag = lift_and_drag(loads, system.alpha)
     sweep = wing.sweep * DEG
-    e_s = np.array([math.sin(sweep), math.cos(sweep), 0.0])
     force, center = loads.force, loads.center
     heave, slope, phi = x[layout.heave].copy(), x[layout.slope].copy(), x[layout.twist].copy()
     twist = phi * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)  # streamwise, elastic
     fz = loads.per_strip(force[2], k)
     shear = outboard_sum(fz)
-    arc = wing.y / math.cos(sweep)  # [m] along the elastic axis
-    bending_moment = outboard_sum(loads.per_strip(force[2] * (e_s @ center), k)) - arc * shear
+    bending_moment = _bending_moment(wing, loads, k)
     torque = outboard_sum(loads.per_strip(loads.torque, k))
     if system.deformed_axis:
         axis_force = force[0] * math.cos(sweep) - force[1] * math.sin(sweep)
@@ -118,7 +159,7 @@ def equilibrium_loads(
         lift=fz,
         lift_per_span=fz / widths,
         torque=strip_torque,
-        rigid_lift_per_span=rigid_strip_lift / widths,
+        rigid_lift_per_span=q * rigid.strip_lift / widths,
     )
     area = wing.planform_area
     deformed_area = _deformed_area(wing.chord, loads.quarter_chord)
@@ -132,12 +173,14 @@ def equilibrium_loads(
         CL_deformed_area=lift / (q * deformed_area),
         reference_area=area,
         deformed_area=deformed_area,
-        rigid_lift=rigid_lift,
-        lift_amplification=None if unloaded else _amplification(lift, rigid_lift),
+        rigid_lift=q * rigid.lift,
+        lift_amplification=None if unloaded else _amplification(lift, q * rigid.lift),
         tip_heave=float(heave[-1]),
         tip_twist=float(twist[-1]),
         root_bending_moment=float(bending_moment[0]),
         root_torque=float(torque[0]),
         pitching_moment=pitching,
+        alpha=system.alpha,
+        rigid_root_bending_moment=q * rigid.root_bending_moment,
     )
     return stations, panels, totals

@@ -53,7 +53,7 @@ __all__ = [
 ]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "4"
+MODEL_VERSION = "5"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -411,7 +411,8 @@ def _induced_values(
 
 
 def build_residual_function(layout: Layout) -> ca.Function:
-    """(x, p) -> (r0, r1): the residual alone, without derivatives (line searches, checks)."""
+    """(x, p) -> (r0, r1, lift): the residual alone, without derivatives (path correctors,
+    checks), and the lift per unit q [m^2] (the trimmed system's extra row)."""
     sym = _Symbols(layout)
     left, right, collocation, center, *_ = sym.lattice()
     ind_t = _induced_values(sym, left, right, collocation, sym.all_bound_legs)
@@ -421,9 +422,9 @@ def build_residual_function(layout: Layout) -> ca.Function:
     return ca.Function(
         f"flexwing_residual_{_tag(layout)}",
         [sym.x, sym.p],
-        [ca.densify(r0), ca.densify(r1)],
+        [ca.densify(r0), ca.densify(r1), ca.densify(sym.lift(loads))],
         ["x", "p"],
-        ["r0", "r1"],
+        ["r0", "r1", "lift"],
     )
 
 

@@ -81,7 +81,9 @@ class Panels:
     lift_per_span: np.ndarray = quantity("N/m", "vertical force per jig strip width")
     torque: np.ndarray = quantity("N m", "torque about the undeformed elastic axis")
     rigid_lift_per_span: np.ndarray = quantity(
-        "N/m", "the rigid jig's vertical force per strip width at the same condition"
+        "N/m",
+        "the rigid jig's vertical force per strip width at the same condition (trimmed: the "
+        "rigid jig trimmed to the same lift)",
     )
 
 
@@ -100,11 +102,16 @@ class Totals:
     )
     reference_area: float = quantity("m^2", "jig planform area, both halves")
     deformed_area: float = quantity("m^2", "deformed planform area, both halves")
-    rigid_lift: float = quantity("N", "lift of the rigid jig shape at the same condition")
+    rigid_lift: float = quantity(
+        "N",
+        "lift of the rigid jig shape at the same condition: at the same alpha, or trimmed to "
+        "the same lift (then equal to lift)",
+    )
     lift_amplification: float | None = quantity(
         "-",
         "lift / rigid_lift; null when the rigid wing carries no lift (alpha = 0 on an "
-        "uncambered, untwisted wing, or within 1e-10 rad of it)",
+        "uncambered, untwisted wing, or within 1e-10 rad of it); trimmed: 1, see "
+        "lift_effectiveness",
     )
     tip_heave: float = quantity("m", "heave at the tip")
     tip_twist: float = quantity("deg", "elastic twist the flow sees at the tip (streamwise)")
@@ -113,6 +120,23 @@ class Totals:
     pitching_moment: float = quantity(
         "N m",
         "pitching moment (about y, nose-up > 0) of both halves about the root's elastic axis point",
+    )
+    alpha: float = quantity(
+        "deg", "angle of attack of the jig: as asked, or the trimmed one", default=0.0
+    )
+    rigid_root_bending_moment: float = quantity(
+        "N m",
+        "root bending moment of the rigid jig at the same condition (trimmed: at the same lift)",
+        default=0.0,
+    )
+    rigid_alpha: float | None = quantity(
+        "deg", "trimmed flight: the rigid jig's angle of attack for the same lift", default=None
+    )
+    lift_effectiveness: float | None = quantity(
+        "-",
+        "trimmed flight: the flexible wing's lift-curve slope over the rigid wing's at this "
+        "angle of attack (below 1: flexibility costs lift per degree)",
+        default=None,
     )
 
 
@@ -170,6 +194,13 @@ class Fold:
     evaluations: int = quantity(
         "-", "model evaluations the continuation spent to this speed", default=0
     )
+    kind: Literal["fold", "trimmed_stability_limit"] = quantity(
+        "",
+        "fold: the branch from the jig turns back here, no equilibrium on it beyond; "
+        "trimmed_stability_limit: at a fixed lift, where the trimmed equilibrium loses static "
+        "stability at fixed alpha (it exists beyond, unstable)",
+        default="fold",
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -226,10 +257,11 @@ class FitDivergence:
     dynamic_pressure: float | None = quantity("Pa", "where 1/A reaches 0")
     velocity: float | None = quantity("m/s", "at the sweep's density")
     reason: str | None = quantity("", "why the values are null, else null", default=None)
-    amplification: Literal["CL", "lift"] = quantity(
+    amplification: Literal["CL", "lift", "lift_effectiveness"] = quantity(
         "",
         "what A is: 'CL' (the study's: CL on the deformed area over the rigid CL on the jig "
-        "area) or 'lift' (L / L_rigid)",
+        "area), 'lift' (L / L_rigid) or, trimmed, 'lift_effectiveness' (the flexible wing's "
+        "lift-curve slope over the rigid wing's)",
         default="CL",
     )
     points_used: int = quantity("-", "stable equilibria in the fit", default=0)

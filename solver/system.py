@@ -37,7 +37,18 @@ class CoupledSystem:
         return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed")
 
     def at_alpha(self, alpha: float) -> CoupledSystem:
-        return CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
+        """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
+        model and every other parameter: a trimmed solve changes alpha at every iteration)."""
+        other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
+        known = self.__dict__
+        if "parameters" in known:
+            parameters = known["parameters"].copy()
+            parameters[self.layout.alpha_index] = alpha
+            other.__dict__["parameters"] = parameters
+        for name in ("layout", "model"):
+            if name in known:
+                other.__dict__[name] = known[name]
+        return other
 
     @cached_property
     def layout(self) -> Layout:
@@ -70,6 +81,10 @@ class CoupledSystem:
 
     def residual(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return self.model.residual(x, self.parameters)
+
+    def residual_with_lift(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) and the lift of both halves per unit q [m^2] at x."""
+        return self.model.residual_with_lift(x, self.parameters)
 
     def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord

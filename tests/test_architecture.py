@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # solver/, bottom first: a module may import only from the layers before its own.
 SOLVER_LAYERS: list[list[str]] = [
     ["errors"],
+    ["airfoil"],
     ["inputs", "layout"],
     ["geometry"],
     ["vlm"],
@@ -32,7 +33,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["equilibrium"],
     ["divergence", "recovery"],
     ["solve"],
-    ["sweep"],
+    ["sweep", "trim"],
     ["warm"],
     ["__init__"],
 ]
