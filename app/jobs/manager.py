@@ -289,7 +289,7 @@ class JobManager:
         job.done += 1
         job.problems += not ok
         job.answers += 1
-        self.store.write(store.insert_item, job.id, index, job.answers, line)
+        self.store.write(store.insert_item, job.id, index, job.answers, ok, line)
         self.metrics.batch_items.labels("ok" if ok else "problem").inc()
         now = time.monotonic()
         if now - job.progress_written >= _PROGRESS_INTERVAL:

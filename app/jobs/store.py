@@ -66,6 +66,7 @@ CREATE TABLE IF NOT EXISTS items (
     job TEXT NOT NULL,
     idx INTEGER NOT NULL,
     seq INTEGER NOT NULL,
+    ok INTEGER NOT NULL,
     line TEXT NOT NULL,
     PRIMARY KEY (job, idx)
 );
@@ -209,11 +210,11 @@ def update_job(connection: sqlite3.Connection, job_id: str, fields: JobRow) -> N
 
 
 def insert_item(
-    connection: sqlite3.Connection, job_id: str, index: int, seq: int, line: str
+    connection: sqlite3.Connection, job_id: str, index: int, seq: int, ok: bool, line: str
 ) -> None:
     connection.execute(
-        "INSERT OR REPLACE INTO items (job, idx, seq, line) VALUES (?, ?, ?, ?)",
-        (job_id, index, seq, line),
+        "INSERT OR REPLACE INTO items (job, idx, seq, ok, line) VALUES (?, ?, ?, ?, ?)",
+        (job_id, index, seq, ok, line),
     )
 
 
@@ -311,11 +312,17 @@ def interrupt_jobs_of(
     )
     rows = cursor.fetchall()
     for job_id, status, done, total in rows:
+        # A batch's answered items are all here; its progress column may lag (written every
+        # half second).
+        answered, problems = connection.execute(
+            "SELECT COUNT(*), COUNT(*) - COALESCE(SUM(ok), 0) FROM items WHERE job = ?", (job_id,)
+        ).fetchone()
+        done = max(done, answered)
         problem = interrupted_problem(status, done, total)
         connection.execute(
-            "UPDATE jobs SET status = 'failed', finished = ?, expires = ?, problem = ? "
-            "WHERE id = ?",
-            (now, now + retention, json.dumps(problem), job_id),
+            "UPDATE jobs SET status = 'failed', finished = ?, expires = ?, problem = ?, "
+            "done = ?, problems = MAX(problems, ?) WHERE id = ?",
+            (now, now + retention, json.dumps(problem), done, problems, job_id),
         )
     return len(rows)
 

@@ -98,7 +98,7 @@ def _parse_cursor(cursor: str) -> tuple[float, str]:
         return float(created), str(job_id)
     except (ValueError, TypeError, binascii.Error):
         reason = "is not a cursor from a previous page's `next`"
-        raise Problem.invalid([FieldError("cursor", reason)]) from None
+        raise Problem.invalid([FieldError("query.cursor", reason)]) from None
 
 
 # --------------------------------------------------------------------------- the router
