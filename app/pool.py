@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import dataclasses
 import importlib
 import logging
 from collections import deque
@@ -245,9 +246,10 @@ class WorkerPool:
         """Process ids of the local workers (empty for remote ones)."""
         return [] if self.backend is None else self.backend.pids()
 
-    def cluster(self) -> list[ClusterWorkerInfo] | None:
-        """The workers of a remote cluster, or None for local workers."""
-        return None if self.backend is None else self.backend.cluster()
+    def cluster(self) -> list[dict[str, Any]] | None:
+        """The workers of a remote cluster (as /readyz shows them), or None for local workers."""
+        workers = None if self.backend is None else self.backend.cluster()
+        return None if workers is None else [dataclasses.asdict(w) for w in workers]
 
     async def start(self) -> None:
         """Create the backend and begin warming it; returns at once (see `ready`)."""
