@@ -49,7 +49,10 @@ def _problem(description: str) -> dict[str, Any]:
 
 
 Responses = dict[int | str, dict[str, Any]]
-_NOT_FOUND: Responses = {404: _problem("No such job, or it has expired (/problems/not-found).")}
+_NOT_FOUND: Responses = {
+    404: _problem("No such job, or it has expired (/problems/not-found)."),
+    422: _problem("A job id that is not one (/problems/invalid-input, field `path.job_id`)."),
+}
 _LIST_RESPONSES: Responses = {422: _problem("A bad `limit`, `cursor` or `status`.")}
 _CANCEL_RESPONSES: Responses = {
     **_NOT_FOUND,
@@ -254,6 +257,7 @@ _ITEMS_RESPONSES: Responses = {
         ),
         "content": {"application/x-ndjson": {"schema": {"type": "string"}}},
     },
+    **_NOT_FOUND,
     404: _problem("No such batch job, or it has expired (/problems/not-found)."),
 }
 
