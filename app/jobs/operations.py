@@ -1,16 +1,17 @@
 """What a job can run: a small registry, one `Operation` per name.
 
-Adding one (e.g. ``optimize`` once POST /optimize exists) is a few lines::
+Adding one (e.g. ``optimize`` once POST /optimize exists) is a few lines, before
+`app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
+
+    async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
+        payload = await context.service.optimize(request)
+        return OptimizeResponse.model_validate(payload).model_dump_json()
 
     register(Operation(
-        name="optimize", summary="one optimization", request_model=OptimizeRequest,
-        request_description="A POST /optimize body.", units=lambda request: 1,
-        check=lambda request, settings: None,
-        run=lambda context, request: context.respond(
-            OptimizeResponse, context.service.optimize(request)),
+        name="optimize", summary="one optimization (POST /optimize)",
+        request_model=OptimizeRequest, request_description="A POST /optimize body.",
+        units=lambda request: 1, check=lambda request, settings: None, run=_run_optimize,
     ))
-
-before `app.main.create_app` builds the routes (the POST /jobs body model is made from it).
 """
 
 from __future__ import annotations

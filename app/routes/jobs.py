@@ -135,7 +135,8 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
         job = manager.submit(body.operation, body.request)  # type: ignore[attr-defined]
         return _accepted(manager, job.row())
 
-    _add_reading_routes(router)
+    _add_list_route(router)
+    _add_job_routes(router)
     _add_streaming_routes(router)
     return router
 
@@ -153,7 +154,7 @@ def _examples(operations: Mapping[str, Operation]) -> dict[str, Any]:
     }
 
 
-def _add_reading_routes(router: APIRouter) -> None:
+def _add_list_route(router: APIRouter) -> None:
     @router.get(
         "/jobs",
         operation_id="list_jobs",
@@ -184,6 +185,8 @@ def _add_reading_routes(router: APIRouter) -> None:
         jobs = [job_view(row, manager.operations) for row in page]
         return JSONResponse({"jobs": jobs, "next": following})
 
+
+def _add_job_routes(router: APIRouter) -> None:
     @router.get(
         "/jobs/{job_id}",
         operation_id="get_job",

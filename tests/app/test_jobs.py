@@ -439,3 +439,35 @@ def test_jobs_of_a_killed_service_are_reported_interrupted_by_the_next(
         assert batch["status"] == "failed", batch
         assert batch["problem"]["type"] == "/problems/job-interrupted"
         assert len(ndjson(client, running)) == batch["progress"]["done"] >= 3
+
+
+# ------------------------------------------------------------------------------ registry
+
+
+def test_a_new_operation_is_one_registry_entry() -> None:
+    """What POST /jobs accepts is built from the registry: an operation added to it is accepted
+    (here one that takes a /solve body), one that is not there is an error on `operation`."""
+    from pydantic import TypeAdapter, ValidationError
+
+    from app.jobs.models import submission_type
+    from app.jobs.operations import OPERATIONS, Operation
+    from app.schemas import SolveRequest
+
+    async def run(context: Any, request: SolveRequest) -> str:
+        return "{}"
+
+    echo = Operation(
+        name="echo",
+        summary="an echo",
+        request_model=SolveRequest,
+        request_description="A POST /solve body.",
+        units=lambda request: 1,
+        check=lambda request, settings: None,
+        run=run,
+    )
+    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(OPERATIONS | {"echo": echo}))
+    body = adapter.validate_python({"operation": "echo", "request": study.solve_request(10.0)})
+    assert body.operation == "echo" and body.request.flight.velocity == 10.0
+    with pytest.raises(ValidationError) as raised:
+        adapter.validate_python({"operation": "optimize", "request": {}})
+    assert [error["loc"][-1] for error in raised.value.errors()] == ["operation"]
