@@ -31,6 +31,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
+import distributed
+from distributed import Client, KilledWorker
+from distributed.client import FutureCancelledError
+
 from app import worker
 from app.metrics import Metrics
 from app.pool import Capacity, ClusterWorkerInfo, NotReady, SolveTimeout, WorkerDied
@@ -110,8 +114,7 @@ class DaskWorkers:
     # ------------------------------------------------------------------------- lifecycle
 
     async def start(self) -> None:
-        import distributed  # noqa: F401  (fails here, clearly, when dask is not installed)
-
+        log.info("Dask %s client of %s", distributed.__version__, self.address)
         self._watching = asyncio.create_task(self._watch(), name="flexwing-dask-watch")
 
     async def close(self) -> None:
@@ -141,8 +144,6 @@ class DaskWorkers:
             await asyncio.sleep(_WATCH_INTERVAL)
 
     async def _connect(self) -> Any:
-        from distributed import Client
-
         return await Client(
             self.address,
             asynchronous=True,
@@ -215,9 +216,6 @@ class DaskWorkers:
             return await self._outcome(future, timeout)
 
     async def _outcome(self, future: Any, timeout: float) -> Any:
-        from distributed import KilledWorker
-        from distributed.client import FutureCancelledError
-
         try:
             return await asyncio.wait_for(future.result(), timeout)
         except TimeoutError:

@@ -1,6 +1,6 @@
 """Request models -> validated solver inputs, or an invalid-input problem naming every bad field.
 
-Pydantic has already checked types, finiteness and signs item by item (`app.schemas`). This step
+Pydantic has already checked types, finiteness and ranges item by item (`app.schemas`). This step
 adds what needs the settings (most stations, most sweep points) and what `solver.Wing.create` and
 `solver.FlightCondition` check (the root at y = 0, increasing stations, matching lengths).
 """
@@ -14,9 +14,9 @@ import numpy as np
 
 from app import schemas
 from app.problems import FieldError, Problem
+from app.schemas import LIMITS
 from app.settings import Settings
-from solver import FlightCondition, InvalidInput, SolverOptions, Wing
-from solver.model import Layout
+from solver import FlightCondition, InvalidInput, Layout, SolverOptions, Wing
 
 __all__ = ["SolveInput", "SweepInput", "solve_input", "solver_options", "sweep_input"]
 
@@ -46,20 +46,36 @@ def solver_options(model: schemas.SolverOptions | None) -> SolverOptions:
     return SolverOptions(**{k: v for k, v in values.items() if k in _OPTION_NAMES})
 
 
+def _stations(model: schemas.Wing) -> list[float] | np.ndarray:
+    if isinstance(model.y, schemas.StationSpacing):
+        return np.linspace(0.0, model.y.semispan, model.y.stations)
+    return model.y
+
+
 def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> Wing | None:
-    n = len(model.y)
+    y = _stations(model)
+    n = len(y)
     if n > settings.max_stations:
+        field = "wing.y" if isinstance(model.y, list) else "wing.y.stations"
         errors.append(
             FieldError(
-                "wing.y",
+                field,
                 f"has {n} stations; at most {settings.max_stations} are allowed "
                 "(FLEXWING_MAX_STATIONS)",
             )
         )
         return None
+    semispan = LIMITS["semispan"]
+    if len(y) and y[-1] < semispan.minimum:
+        errors.append(
+            FieldError(
+                "wing.y", f"the semispan (the last station) must be at least {semispan.minimum:g} m"
+            )
+        )
+        return None
     try:
         return Wing.create(
-            model.y,
+            y,
             model.chord,
             model.elastic_axis,
             model.bending_stiffness,
@@ -140,7 +156,7 @@ def sweep_input(request: schemas.SweepRequest, settings: Settings) -> SweepInput
     wing = _wing(request.wing, settings, errors)
     velocities = _velocities(request, settings, errors)
     f = request.flight
-    # Airspeeds are positive by schema; this checks alpha and density with the solver's rules.
+    # Airspeeds are in range by schema; this checks alpha and density with the solver's rules.
     _flight(velocities[0] if velocities else 1.0, f.alpha, f.density, errors)
     if errors or wing is None:
         raise Problem.invalid(errors)

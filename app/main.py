@@ -13,13 +13,14 @@ from typing import Any
 
 from fastapi import Depends, FastAPI
 from fastapi.openapi.utils import get_openapi
+from fastapi.staticfiles import StaticFiles
 
 from app import __version__
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.pool import WorkerPool
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import health, solve, sweep
+from app.routes import health, page, solve, sweep
 from app.routes import jobs as job_routes
 from app.service import Service
 from app.settings import Settings, get_settings
@@ -99,8 +100,24 @@ class BodyLimitMiddleware:
         await self.app(scope, replay, send)
 
 
-def _openapi(app: FastAPI) -> Callable[[], dict[str, Any]]:
-    """The OpenAPI document, with error responses as application/problem+json."""
+def _apply_limits(node: Any, settings: Settings) -> None:
+    """Write the configured limits where the schema marks them (`x-flexwing-limit`): maxItems of
+    a list, maximum of a count."""
+    if isinstance(node, dict):
+        limit = node.pop("x-flexwing-limit", None)
+        if limit is not None:
+            value = getattr(settings, limit)
+            node["maxItems" if node.get("type") == "array" else "maximum"] = value
+        for child in node.values():
+            _apply_limits(child, settings)
+    elif isinstance(node, list):
+        for child in node:
+            _apply_limits(child, settings)
+
+
+def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
+    """The OpenAPI document, with error responses as application/problem+json and the
+    configured limits."""
 
     def build() -> dict[str, Any]:
         if app.openapi_schema is not None:
@@ -122,6 +139,7 @@ def _openapi(app: FastAPI) -> Callable[[], dict[str, Any]]:
                     ref = content.get("application/json", {}).get("schema", {}).get("$ref", "")
                     if ref.endswith("/ProblemDetails"):
                         content[PROBLEM_MEDIA_TYPE] = content.pop("application/json")
+        _apply_limits(schema, settings)
         app.openapi_schema = schema
         return schema
 
@@ -150,6 +168,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         version=__version__,
         description=DESCRIPTION,
         lifespan=lifespan,
+        docs_url=None,  # /docs is app.routes.page's: Swagger UI from vendored files, no CDN
+        redoc_url=None,
     )
     app.state.settings = settings
     app.state.metrics = metrics
@@ -160,14 +180,16 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     # Prefer: respond-async turns a /sweep call into a job (202 + Location).
     async_sweep = Depends(job_routes.respond_async("sweep"))
     app.include_router(sweep.router, dependencies=[async_sweep], responses=job_routes.ACCEPTED)
-    app.include_router(health.router)
+    for module in (health, page):
+        app.include_router(module.router)
     job_routes.install(app, jobs)
+    app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")
     job_body = (settings.max_job_body_bytes, "FLEXWING_MAX_JOB_BODY_BYTES")
     app.add_middleware(
         BodyLimitMiddleware, limit=settings.max_body_bytes, path_limits={"/jobs": job_body}
     )
     app.add_middleware(MetricsMiddleware, metrics=metrics)
-    app.openapi = _openapi(app)  # type: ignore[method-assign]
+    app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app
 
 

@@ -184,29 +184,44 @@ class Backend(Protocol):
     def cluster(self) -> list[ClusterWorkerInfo] | None: ...
 
 
+def _load(path: str) -> Any:
+    """The object `module:name` names."""
+    module, _, name = path.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
 def _load_factory(path: str) -> Callable[[Settings], Executor]:
     module, _, name = path.partition(":")
     if not module or not name:
         raise ValueError(
             f"FLEXWING_EXECUTOR must be 'process', 'dask' or 'module:callable', not {path!r}"
         )
-    factory: Callable[[Settings], Executor] = getattr(importlib.import_module(module), name)
+    factory: Callable[[Settings], Executor] = _load(path)
     return factory
 
 
+# FLEXWING_EXECUTOR names -> backend classes, loaded by name: each pulls in its own libraries
+# (Dask's only when it is used), and each imports this module (its errors), not the reverse.
+BACKENDS = {
+    "process": "app.worker_processes:LocalWorkers",
+    "dask": "app.dask_executor:DaskWorkers",
+}
+EXECUTOR_BACKEND = "app.executor_workers:ExecutorWorkers"  # for FLEXWING_EXECUTOR=module:callable
+
+
 def make_backend(settings: Settings, metrics: Metrics) -> Backend:
-    """The backend `settings.executor` names (imported here: each pulls in its own libraries)."""
-    if settings.executor == "process":
-        from app.worker_processes import LocalWorkers
-
-        return LocalWorkers(settings, metrics)
-    if settings.executor == "dask":
-        from app.dask_executor import DaskWorkers
-
-        return DaskWorkers(settings, metrics)
-    from app.executor_workers import ExecutorWorkers
-
-    return ExecutorWorkers(settings, _load_factory(settings.executor))
+    """The backend `settings.executor` names."""
+    if settings.executor not in BACKENDS:
+        factory = _load_factory(settings.executor)
+        return _load(EXECUTOR_BACKEND)(settings, factory)  # type: ignore[no-any-return]
+    try:
+        backend = _load(BACKENDS[settings.executor])
+    except ImportError as error:
+        raise ValueError(
+            f"FLEXWING_EXECUTOR={settings.executor} needs {error.name}: "
+            "pip install 'flexwing[dask]'"
+        ) from error
+    return backend(settings, metrics)  # type: ignore[no-any-return]
 
 
 class WorkerPool:

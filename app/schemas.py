@@ -4,47 +4,44 @@ The examples are the design study's wing (shared/seed, chapter 14): y = linspace
 chord = sqrt(linspace(2, 0.02, 30)) m, elastic axis at 40 % chord, EI = 2e4 c^3, GJ = 1e3 c^3,
 alpha 5 deg, 10 m/s; `/docs` runs them as they are.
 
-Limits that depend on settings (most stations, most sweep points) are checked when a request is
-converted to solver inputs (`app.inputs`), so this schema, and the OpenAPI document generated
-from it, do not depend on the environment.
+Every number has the physical and numerical limits the API enforces (`LIMITS`), and they are in
+the OpenAPI document as minimum/maximum: what the document allows is what the API accepts, apart
+from rules JSON Schema cannot state (the lists of one wing have one length, stations increase
+from y = 0), which the descriptions give. Limits set by the service's settings (most stations,
+most sweep points) are marked with `x-flexwing-limit` here and written into the document by
+`app.main` from the running configuration; they are checked when a request becomes solver
+inputs (`app.inputs`).
+
+The response models are derived from the solver's result types (`app.results`).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, NamedTuple, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
 
+from app.results import SolveResponse, SweepResponse
 from app.settings import MAX_ARRAY_LENGTH
-from solver.wing import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
+from solver import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
 
 __all__ = [
+    "LIMITS",
     "SOLVE_EXAMPLES",
     "SWEEP_EXAMPLES",
     "ClusterWorker",
-    "Divergence",
-    "FitDivergence",
     "Flight",
-    "Fold",
     "HealthResponse",
     "InitialGuess",
-    "LinearDivergence",
-    "NoEquilibrium",
-    "Panels",
     "ReadyResponse",
     "SolveRequest",
     "SolveResponse",
-    "SolverInfo",
     "SolverOptions",
-    "Stability",
-    "Stations",
+    "StationSpacing",
     "SweepFlight",
-    "SweepInfo",
-    "SweepPoint",
     "SweepRequest",
     "SweepResponse",
-    "Totals",
     "VelocityRange",
     "Wing",
     "study_wing",
@@ -102,17 +99,84 @@ SWEEP_EXAMPLES: dict[str, Any] = {
     },
 }
 
-Finite = Annotated[float, Field(allow_inf_nan=False)]
-Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
-FiniteList = Annotated[list[Finite], Field(max_length=MAX_ARRAY_LENGTH)]
-StationList = Annotated[list[Finite], Field(min_length=MIN_STATIONS, max_length=MAX_ARRAY_LENGTH)]
-PositiveList = Annotated[
-    list[Positive], Field(min_length=MIN_STATIONS, max_length=MAX_ARRAY_LENGTH)
+
+class Limit(NamedTuple):
+    """An inclusive range [minimum, maximum] and why it is there."""
+
+    minimum: float
+    maximum: float
+    unit: str
+    why: str
+
+
+LIMITS: dict[str, Limit] = {
+    "y": Limit(0.0, 1000.0, "m", "a semispan of up to 1 km"),
+    "semispan": Limit(0.01, 1000.0, "m", "1 cm to 1 km"),
+    "chord": Limit(1e-3, 100.0, "m", "1 mm to 100 m"),
+    "elastic_axis": Limit(0.0, 1.0, "-", "a fraction of the chord: on the section"),
+    "stiffness": Limit(1e-3, 1e12, "N m^2", "a foam model wing to a steel bridge"),
+    "velocity": Limit(0.01, 1000.0, "m/s", "the lattice is incompressible: Mach 3 is far past it"),
+    "alpha": Limit(-30.0, 30.0, "deg", "an attached-flow lattice means nothing beyond"),
+    "density": Limit(1e-4, 2000.0, "kg/m^3", "the stratosphere to sea water (hydrofoils)"),
+    "heave": Limit(-1e4, 1e4, "m", "a starting deformation"),
+    "slope": Limit(-1e3, 1e3, "-", "a starting deformation"),
+    "twist": Limit(-360.0, 360.0, "deg", "a starting deformation"),
+}
+
+
+def _ranged(name: str, description: str, **kwargs: Any) -> Any:
+    """A number field within LIMITS[name], its range stated in the description."""
+    limit = LIMITS[name]
+    return Field(
+        ge=limit.minimum,
+        le=limit.maximum,
+        allow_inf_nan=False,
+        description=f"[{limit.unit}] {description} {limit.minimum:g} to {limit.maximum:g} "
+        f"({limit.why}).",
+        **kwargs,
+    )
+
+
+def _described(name: str, description: str, **kwargs: Any) -> Any:
+    """The field of a number-or-list input: the range sits on its items."""
+    limit = LIMITS[name]
+    return Field(
+        description=f"[{limit.unit}] {description} each {limit.minimum:g} to {limit.maximum:g} "
+        f"({limit.why}); one number for every station, or N values.",
+        **kwargs,
+    )
+
+
+def _range(name: str) -> Any:
+    """The Field constraint of one number within LIMITS[name]."""
+    limit = LIMITS[name]
+    return Field(ge=limit.minimum, le=limit.maximum, allow_inf_nan=False)
+
+
+YNumber = Annotated[float, _range("y")]
+ChordNumber = Annotated[float, _range("chord")]
+ElasticAxisNumber = Annotated[float, _range("elastic_axis")]
+StiffnessNumber = Annotated[float, _range("stiffness")]
+VelocityNumber = Annotated[float, _range("velocity")]
+HeaveNumber = Annotated[float, _range("heave")]
+SlopeNumber = Annotated[float, _range("slope")]
+TwistNumber = Annotated[float, _range("twist")]
+
+# Up to one value per station: the limit is the service's (`x-flexwing-limit`).
+PerStation = Field(
+    max_length=MAX_ARRAY_LENGTH, json_schema_extra={"x-flexwing-limit": "max_stations"}
+)
+Number = TypeVar("Number")
+# One number for every station, or a list of N (the station arrays of a wing).
+StationValues = Annotated[
+    Annotated[Number, Tag("@number")]
+    | Annotated[list[Number], Field(min_length=MIN_STATIONS), PerStation, Tag("@list")],
+    Discriminator(lambda value: "@list" if isinstance(value, list) else "@number"),
 ]
 
 
-def _number_or_list(value: Any) -> str:
-    return "@list" if isinstance(value, list) else "@number"
+def _list_or_object(value: Any) -> str:
+    return "@list" if isinstance(value, list) else "@object"
 
 
 class _Model(BaseModel):
@@ -124,90 +188,112 @@ class _Model(BaseModel):
 # ----------------------------------------------------------------------------------- requests
 
 
+class StationSpacing(_Model):
+    """`stations` evenly spaced stations from the root (y = 0) to the tip (y = semispan)."""
+
+    semispan: float = _ranged("semispan", "tip station,")
+    stations: int = Field(
+        ge=MIN_STATIONS,
+        le=MAX_ARRAY_LENGTH,
+        description="[-] number of stations N, root and tip included.",
+        json_schema_extra={"x-flexwing-limit": "max_stations"},
+    )
+
+
+StationPositions = Annotated[
+    Annotated[list[YNumber], Field(min_length=MIN_STATIONS), PerStation, Tag("@list")]
+    | Annotated[StationSpacing, Tag("@object")],
+    Discriminator(_list_or_object),
+]
+
+
 class Wing(_Model):
-    """A symmetric, unswept wing described on its right half at N stations from the root."""
+    """A symmetric wing described on its right half at N stations from the root.
+
+    Every per-station input is one number for all stations or a list of N values. Stations must
+    increase strictly from y[0] = 0, each gap at least 1e-4 of the semispan.
+    """
 
     model_config = ConfigDict(
         extra="forbid", strict=True, json_schema_extra={"examples": [_STUDY_WING]}
     )
 
-    y: StationList = Field(
+    y: StationPositions = Field(
         description=(
-            "[m] spanwise station positions from the root: y[0] = 0, strictly increasing. "
-            f"N = len(y) stations, {MIN_STATIONS} <= N <= FLEXWING_MAX_STATIONS (default 150)."
+            "[m] spanwise station positions from the root, 0 to 1000: a list with y[0] = 0, "
+            "strictly increasing, its last (the semispan) at least 0.01, or {semispan, stations} "
+            "for evenly spaced ones. N stations, "
+            f"{MIN_STATIONS} <= N <= FLEXWING_MAX_STATIONS (default 150)."
         ),
         examples=[_STUDY_WING["y"]],
     )
-    chord: PositiveList = Field(
-        description="[m] chord length at each station, > 0; N values.",
-        examples=[_STUDY_WING["chord"]],
+    chord: StationValues[ChordNumber] = _described(
+        "chord", "chord length at each station,", examples=[_STUDY_WING["chord"]]
     )
-    elastic_axis: Annotated[
-        Annotated[Finite, Tag("@number")] | Annotated[FiniteList, Tag("@list")],
-        Discriminator(_number_or_list),
-    ] = Field(
-        description=(
-            "[-] elastic-axis position as a fraction of chord from the leading edge: one number "
-            "for every station, or N values."
-        ),
+    elastic_axis: StationValues[ElasticAxisNumber] = _described(
+        "elastic_axis",
+        "elastic-axis position as a fraction of chord from the leading edge,",
         examples=[0.4],
     )
-    bending_stiffness: PositiveList = Field(
-        description="[N m^2] flapwise bending stiffness EI at each station, > 0; N values.",
+    bending_stiffness: StationValues[StiffnessNumber] = _described(
+        "stiffness",
+        "flapwise bending stiffness EI at each station,",
         examples=[_STUDY_WING["bending_stiffness"]],
     )
-    torsional_stiffness: PositiveList = Field(
-        description="[N m^2] torsional stiffness GJ at each station, > 0; N values.",
+    torsional_stiffness: StationValues[StiffnessNumber] = _described(
+        "stiffness",
+        "torsional stiffness GJ at each station,",
         examples=[_STUDY_WING["torsional_stiffness"]],
     )
 
 
-_Velocity = Field(gt=0, allow_inf_nan=False, description="[m/s] airspeed, > 0.", examples=[10.0])
-_Alpha = Field(
-    gt=-90,
-    lt=90,
-    allow_inf_nan=False,
-    description="[deg] angle of attack of the jig (undeformed) shape.",
-    examples=[5.0],
-)
-_Density = Field(
-    default=ISA_SEA_LEVEL_DENSITY,
-    gt=0,
-    allow_inf_nan=False,
-    description="[kg/m^3] air density, > 0.",
-    examples=[ISA_SEA_LEVEL_DENSITY],
-)
+def _velocity() -> Any:
+    return _ranged("velocity", "airspeed,", examples=[10.0])
+
+
+def _alpha() -> Any:
+    return _ranged("alpha", "angle of attack of the jig (undeformed) shape,", examples=[5.0])
+
+
+def _density() -> Any:
+    return _ranged(
+        "density",
+        "air (or water) density,",
+        default=ISA_SEA_LEVEL_DENSITY,
+        examples=[ISA_SEA_LEVEL_DENSITY],
+    )
 
 
 class Flight(_Model):
     """Steady, symmetric flight."""
 
-    velocity: float = _Velocity
-    alpha: float = _Alpha
-    density: float = _Density
+    velocity: float = _velocity()
+    alpha: float = _alpha()
+    density: float = _density()
 
 
 class SweepFlight(_Model):
     """Steady, symmetric flight; the airspeeds come from `velocities`."""
 
-    alpha: float = _Alpha
-    density: float = _Density
+    alpha: float = _alpha()
+    density: float = _density()
 
 
 class SolverOptions(_Model):
-    """Newton settings; the defaults suit almost every wing."""
+    """How to solve; the defaults suit almost every wing."""
 
     tolerance: float = Field(
         default=1e-10,
         ge=1e-14,
         le=1e-3,
+        allow_inf_nan=False,
         description=(
-            "[mixed units] max-norm of the residual at convergence: heave rows in m, twist rows "
-            "in deg, flow-tangency rows per unit airspeed."
+            "[mixed units] max-norm of the residual at convergence, 1e-14 to 1e-3: heave rows in "
+            "m, twist rows in deg, flow-tangency rows per unit airspeed."
         ),
     )
     max_iterations: int = Field(
-        default=30, ge=1, le=200, description="[-] Newton iterations before giving up."
+        default=30, ge=1, le=200, description="[-] Newton iterations of one attempt, 1 to 200."
     )
     find_fold: bool = Field(
         default=False,
@@ -218,17 +304,30 @@ class SolverOptions(_Model):
     )
 
 
+def _deformation(name: str, description: str, **kwargs: Any) -> Any:
+    limit = LIMITS[name]
+    return Field(
+        description=f"[{limit.unit}] {description}, {limit.minimum:g} to {limit.maximum:g}; "
+        "N values.",
+        **kwargs,
+    )
+
+
 class InitialGuess(_Model):
     """A deformation to start Newton from (e.g. `stations` of an earlier response), N values each.
 
-    Overrides the service's own warm start.
+    If Newton reaches another equilibrium than the one on the branch from the jig shape, that
+    one is returned, flagged `stability.branch = "other"`; otherwise the answer is the same as
+    without a guess.
     """
 
-    heave: FiniteList = Field(description="[m] heave at each station.")
-    slope: FiniteList | None = Field(
-        default=None, description="[-] slope du/dy at each station (default: zeros)."
+    heave: Annotated[list[HeaveNumber], PerStation] = _deformation("heave", "heave at each station")
+    slope: Annotated[list[SlopeNumber], PerStation] | None = _deformation(
+        "slope", "slope du/dy at each station (default: zeros)", default=None
     )
-    twist: FiniteList = Field(description="[deg] twist at each station, positive nose-up.")
+    twist: Annotated[list[TwistNumber], PerStation] = _deformation(
+        "twist", "twist at each station, positive nose-up"
+    )
 
 
 class SolveRequest(_Model):
@@ -251,20 +350,19 @@ class SolveRequest(_Model):
 class VelocityRange(_Model):
     """`count` airspeeds evenly spaced from `start` to `stop`, both included."""
 
-    start: float = Field(gt=0, allow_inf_nan=False, description="[m/s] first airspeed, > 0.")
-    stop: float = Field(gt=0, allow_inf_nan=False, description="[m/s] last airspeed, > 0.")
+    start: float = _ranged("velocity", "first airspeed,")
+    stop: float = _ranged("velocity", "last airspeed,")
     count: int = Field(
-        ge=1, description="[-] number of airspeeds, <= FLEXWING_MAX_SWEEP_POINTS (default 50)."
+        ge=1,
+        le=MAX_ARRAY_LENGTH,
+        description="[-] number of airspeeds, 1 to FLEXWING_MAX_SWEEP_POINTS (default 50).",
+        json_schema_extra={"x-flexwing-limit": "max_sweep_points"},
     )
 
 
-def _list_or_range(value: Any) -> str:
-    return "@list" if isinstance(value, list) else "@range"
-
-
 class SweepRequest(_Model):
-    """One wing over several airspeeds, solved in the given order, each point warm-started from
-    the previous equilibrium."""
+    """One wing over several airspeeds; every point is the equilibrium on the branch from the
+    jig shape at that airspeed, whatever the order."""
 
     model_config = ConfigDict(
         extra="forbid",
@@ -275,13 +373,21 @@ class SweepRequest(_Model):
     wing: Wing
     flight: SweepFlight
     velocities: Annotated[
-        Annotated[list[Positive], Tag("@list"), Field(max_length=MAX_ARRAY_LENGTH)]
-        | Annotated[VelocityRange, Tag("@range")],
-        Discriminator(_list_or_range),
+        Annotated[
+            list[VelocityNumber],
+            Tag("@list"),
+            Field(
+                min_length=1,
+                max_length=MAX_ARRAY_LENGTH,
+                json_schema_extra={"x-flexwing-limit": "max_sweep_points"},
+            ),
+        ]
+        | Annotated[VelocityRange, Tag("@object")],
+        Discriminator(_list_or_object),
     ] = Field(
         description=(
-            "[m/s] airspeeds, solved in this order: a list (1 to FLEXWING_MAX_SWEEP_POINTS "
-            "values, default 50) or {start, stop, count}."
+            "[m/s] airspeeds, 0.01 to 1000, answered in this order: a list (1 to "
+            "FLEXWING_MAX_SWEEP_POINTS values, default 50) or {start, stop, count}."
         ),
         examples=[_STUDY_SWEEP],
     )
@@ -289,176 +395,6 @@ class SweepRequest(_Model):
 
 
 # ---------------------------------------------------------------------------------- responses
-
-
-class Stations(BaseModel):
-    """Deformation and internal loads at the N structural stations, root to tip."""
-
-    y: list[float] = Field(description="[m] station positions.")
-    heave: list[float] = Field(description="[m] vertical displacement, positive up.")
-    slope: list[float] = Field(description="[-] heave slope du/dy.")
-    twist: list[float] = Field(description="[deg] twist about the elastic axis, nose-up > 0.")
-    shear: list[float] = Field(description="[N] vertical shear force carried at the station.")
-    bending_moment: list[float] = Field(description="[N m] flapwise bending moment.")
-    torque: list[float] = Field(description="[N m] torque about the elastic axis.")
-
-
-class Panels(BaseModel):
-    """Aerodynamic loads on the N - 1 right-half panels (strips between stations), root to tip."""
-
-    y: list[float] = Field(description="[m] spanwise load location (deformed bound vortex).")
-    lift: list[float] = Field(description="[N] vertical force on the panel.")
-    lift_per_span: list[float] = Field(description="[N/m] vertical force per jig strip width.")
-    torque: list[float] = Field(description="[N m] torque about the elastic axis.")
-
-
-class Totals(BaseModel):
-    """Whole-wing results (both halves)."""
-
-    lift: float = Field(description="[N] lift, perpendicular to the freestream.")
-    induced_drag: float = Field(description="[N] induced drag, along the freestream.")
-    CL: float = Field(description="[-] lift coefficient on the jig planform area.")
-    CDi: float = Field(description="[-] induced-drag coefficient on the jig planform area.")
-    CL_deformed_area: float = Field(
-        description=(
-            "[-] lift coefficient on the deformed wing's planform area, the convention of "
-            "AeroSandbox and of the design study."
-        )
-    )
-    reference_area: float = Field(description="[m^2] jig planform area, both halves.")
-    deformed_area: float = Field(description="[m^2] deformed planform area, both halves.")
-    rigid_lift: float = Field(description="[N] lift of the rigid jig shape, same condition.")
-    lift_amplification: float | None = Field(
-        description="[-] lift / rigid_lift; null when the rigid wing carries no lift."
-    )
-    tip_heave: float = Field(description="[m] heave at the tip.")
-    tip_twist: float = Field(description="[deg] twist at the tip.")
-    root_bending_moment: float = Field(description="[N m] bending moment at the root.")
-    root_torque: float = Field(description="[N m] torque at the root.")
-
-
-class Stability(BaseModel):
-    """Static aeroelastic stability of this equilibrium, and the wing's linear divergence."""
-
-    stable: bool = Field(description="The equilibrium is statically stable.")
-    margin: float = Field(
-        description=(
-            "[-] q / local divergence pressure at this equilibrium; 1 at instability, 0 when the "
-            "deformed wing cannot diverge."
-        )
-    )
-    local_divergence_pressure: float | None = Field(
-        description="[Pa] divergence dynamic pressure linearised at this equilibrium, or null."
-    )
-    divergence_dynamic_pressure: float | None = Field(
-        description="[Pa] classical linear divergence at the unloaded jig, or null if none."
-    )
-    divergence_velocity: float | None = Field(
-        description="[m/s] airspeed of that divergence at this density, or null."
-    )
-
-
-class SolverInfo(BaseModel):
-    """How the answer was obtained."""
-
-    iterations: int = Field(description="[-] Newton iterations.")
-    residual_norm: float = Field(description="[mixed units] max-norm of the final residual.")
-    warm_start: bool = Field(
-        description="Newton started from a stored or supplied equilibrium, not the jig shape."
-    )
-    seconds: float = Field(description="[s] solver time in the worker (0 if cached).")
-    cached: bool = Field(description="Answered from the result cache without solving.")
-
-
-class Fold(BaseModel):
-    """The fold of the equilibrium branch from the jig shape: past it there is no equilibrium."""
-
-    velocity: float | None = Field(description="[m/s] airspeed at the fold, or null.")
-    dynamic_pressure: float | None = Field(description="[Pa] dynamic pressure at the fold.")
-    tip_twist: float | None = Field(description="[deg] tip twist at the fold.")
-    lift: float | None = Field(description="[N] lift at the fold.")
-    searched_to_velocity: float | None = Field(description="[m/s] how far the branch was followed.")
-    reason: str | None = Field(description="Why a value is null, else null.")
-
-
-class SolveResponse(BaseModel):
-    """A static aeroelastic equilibrium."""
-
-    stations: Stations
-    panels: Panels
-    totals: Totals
-    stability: Stability
-    solver: SolverInfo
-    fold: Fold | None = Field(
-        default=None, description="Present when options.find_fold was requested."
-    )
-
-
-class NoEquilibrium(BaseModel):
-    """Why a sweep point has no equilibrium."""
-
-    reason: str = Field(description="What the solver reported.")
-    fold_velocity: float | None = Field(
-        description="[m/s] where the equilibrium branch ends, when known."
-    )
-
-
-class SweepPoint(BaseModel):
-    velocity: float = Field(description="[m/s] requested airspeed.")
-    status: Literal["equilibrium", "no_equilibrium", "not_converged"] = Field(
-        description=(
-            "equilibrium: `equilibrium` holds the result; no_equilibrium: beyond the fold; "
-            "not_converged: Newton failed. Both failures fill `no_equilibrium`."
-        )
-    )
-    equilibrium: SolveResponse | None = Field(description="The equilibrium, as /solve returns.")
-    no_equilibrium: NoEquilibrium | None = Field(description="Why there is none.")
-
-
-class LinearDivergence(BaseModel):
-    """Classical linear divergence at the unloaded jig (alpha = 0)."""
-
-    dynamic_pressure: float | None = Field(description="[Pa], or null.")
-    velocity: float | None = Field(description="[m/s] at the sweep's density, or null.")
-    reason: str | None = Field(description="Why the values are null, else null.")
-
-
-class FitDivergence(BaseModel):
-    """The design study's estimate: 1/A = intercept + slope q fitted over stable sweep points."""
-
-    slope: float | None = Field(description="[1/Pa] slope of 1/A against q.")
-    intercept: float | None = Field(description="[-] intercept (single-mode theory: 1).")
-    dynamic_pressure: float | None = Field(description="[Pa] where 1/A reaches 0.")
-    velocity: float | None = Field(description="[m/s] at the sweep's density.")
-    reason: str | None = Field(description="Why the values are null, else null.")
-    amplification: Literal["CL", "lift"] = Field(
-        description=(
-            "What A is: 'CL' (the study's: CL on the deformed area over the rigid CL on the jig "
-            "area) or 'lift' (L / L_rigid)."
-        )
-    )
-    points_used: int = Field(description="[-] stable equilibria in the fit.")
-
-
-class Divergence(BaseModel):
-    """Three torsional-divergence estimates that check each other."""
-
-    linear: LinearDivergence
-    fit: FitDivergence
-    fold: Fold
-
-
-class SweepInfo(BaseModel):
-    seconds: float = Field(description="[s] solver time in the worker (0 if cached).")
-    cached: bool = Field(description="Answered from the result cache without solving.")
-
-
-class SweepResponse(BaseModel):
-    """One point per requested airspeed, in request order, and the divergence estimates."""
-
-    points: list[SweepPoint]
-    divergence: Divergence
-    solver: SweepInfo
 
 
 class HealthResponse(BaseModel):

@@ -1,7 +1,10 @@
-"""Between the routes and the pool: caches, warm starts, and failures as problems.
+"""Between the routes and the pool: the result cache, and failures as problems.
 
-request model -> `app.inputs` -> cache lookup -> `app.pool` runs `app.worker` -> caches
+request model -> `app.inputs` -> result cache -> `app.pool` runs `app.worker` -> result cache
 -> response dict (validated against the response model by FastAPI)
+
+The service keeps no solver state between requests: every solve starts from the wing itself, so
+the answer to a request never depends on the requests before it.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 from app import worker
-from app.cache import ResultCache, StateCache, fingerprint
+from app.cache import ResultCache
 from app.inputs import solve_input, sweep_input
 from app.metrics import Metrics
 from app.pool import NotReady, Overloaded, SolveTimeout, WorkerLost, WorkerPool
@@ -55,9 +58,8 @@ class Service:
         self.pool = pool
         self.metrics = metrics
         self.results: ResultCache[Payload | worker.Failure] = ResultCache(
-            settings.result_cache_size
+            settings.result_cache_bytes
         )
-        self.states = StateCache(settings.state_cache_wings, settings.state_cache_per_wing)
 
     async def _run(self, fn: Callable[[Any], T], job: Any, timeout: float, kind: str) -> T:
         """Run a job in the pool; pool failures become 503/504 problems."""
@@ -84,50 +86,37 @@ class Service:
 
     async def solve(self, request: SolveRequest) -> Payload:
         inputs = solve_input(request, self.settings)
-        wing_id = fingerprint(inputs.wing)
         flight = inputs.flight
-        # A supplied initial guess may select another branch: such requests bypass the cache.
-        key = None
-        if inputs.initial_guess is None:
-            key = (
-                "solve",
-                wing_id,
-                flight.velocity,
-                flight.alpha,
-                flight.density,
-                dataclasses.astuple(inputs.options),
-            )
-            hit = self._lookup(key)
-            if isinstance(hit, worker.Failure):
-                raise _failure_problem(hit)
-            if hit is not None:
-                return _cached(hit)
-        guess, hint = inputs.initial_guess, False
-        if guess is None:
-            stored = self.states.nearest(wing_id, flight.dynamic_pressure, flight.alpha)
-            self.metrics.cache.labels("warm_start", "miss" if stored is None else "hit").inc()
-            guess, hint = (None, False) if stored is None else (stored.state, True)
-        job = worker.SolveJob(inputs.wing, flight, inputs.options, guess, hint)
+        key = (
+            "solve",
+            inputs.wing.key,
+            flight.velocity,
+            flight.alpha,
+            flight.density,
+            dataclasses.astuple(inputs.options),
+            None if inputs.initial_guess is None else inputs.initial_guess.tobytes(),
+        )
+        hit = self._lookup(key)
+        if isinstance(hit, worker.Failure):
+            raise _failure_problem(hit)
+        if hit is not None:
+            return _cached(hit)
+        job = worker.SolveJob(inputs.wing, flight, inputs.options, inputs.initial_guess)
         outcome = await self._run(worker.run_solve, job, self.settings.solve_timeout, "solve")
         if outcome.failure is not None:
             self.metrics.solves.labels("solve", outcome.failure.kind).inc()
-            if key is not None:
-                self.results.put(key, outcome.failure)
+            self.results.put(key, outcome.failure)
             raise _failure_problem(outcome.failure)
         assert outcome.payload is not None
         self.metrics.solves.labels("solve", "equilibrium").inc()
-        if outcome.stable and outcome.state is not None:
-            self.states.add(wing_id, flight.dynamic_pressure, flight.alpha, outcome.state)
-        if key is not None:
-            self.results.put(key, outcome.payload)
+        self.results.put(key, outcome.payload)
         return outcome.payload
 
     async def sweep(self, request: SweepRequest) -> Payload:
         inputs = sweep_input(request, self.settings)
-        wing_id = fingerprint(inputs.wing)
         key = (
             "sweep",
-            wing_id,
+            inputs.wing.key,
             inputs.velocities,
             inputs.alpha,
             inputs.density,
@@ -141,7 +130,5 @@ class Service:
         )
         outcome = await self._run(worker.run_sweep, job, self.settings.sweep_timeout, "sweep")
         self.metrics.solves.labels("sweep", "completed").inc()
-        for dynamic_pressure, state in outcome.states:
-            self.states.add(wing_id, dynamic_pressure, inputs.alpha, state)
         self.results.put(key, outcome.payload)
         return outcome.payload

@@ -1,8 +1,8 @@
 """Service settings, read from environment variables prefixed with ``FLEXWING_``.
 
 Every field below is documented with its unit; the README's settings table mirrors them. The
-solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING_CC``) are read by
-`solver.compiled` directly and are not repeated here.
+solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING_CC``,
+``FLEXWING_SOLVER_CACHE_BYTES``) are read by the solver directly and are not repeated here.
 """
 
 from __future__ import annotations
@@ -104,14 +104,13 @@ class Settings(BaseSettings):
     max_body_bytes: int = Field(
         default=1_000_000, ge=1024, description="[bytes] largest request body accepted."
     )
-    result_cache_size: int = Field(
-        default=1024, ge=0, description="Responses kept for repeated requests (0: none)."
-    )
-    state_cache_wings: int = Field(
-        default=256, ge=0, description="Wings whose recent equilibria are kept for warm starts."
-    )
-    state_cache_per_wing: int = Field(
-        default=32, ge=1, description="Equilibria kept per wing for warm starts."
+    result_cache_bytes: int = Field(
+        default=64 * 2**20,
+        ge=0,
+        description=(
+            "[bytes] memory for finished responses kept for repeated requests (0: none); "
+            "estimated from their content, least recently used evicted first."
+        ),
     )
     retry_after: int = Field(
         default=1, ge=0, description="[s] Retry-After sent with 503 responses."

@@ -1,29 +1,26 @@
 """What runs inside a worker process. Everything crossing the process boundary is plain data.
 
 Jobs carry validated solver inputs (`Wing` and `FlightCondition` are dataclasses of numpy arrays
-and floats); outcomes carry JSON-ready dicts shaped like the response models in `app.schemas`,
-plus the solver state vectors that the service keeps for warm starts. No CasADi object ever
-leaves the worker: each process builds (or loads from the disk cache) the compiled functions of a
-mesh size once and keeps them for its lifetime.
+and floats); outcomes carry JSON-ready payloads of the solver's results (`app.results`). No CasADi
+object ever leaves the worker: each process builds (or loads from the disk cache) the compiled
+functions of a mesh size once and keeps them in the solver's cache.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import logging
 import math
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Literal, TypeVar
 
 import numpy as np
 
+from app.results import payload
 from solver import (
     ConvergenceError,
-    DivergenceSummary,
-    Equilibrium,
     FlightCondition,
     NoEquilibrium,
     SolverError,
@@ -31,8 +28,8 @@ from solver import (
     Wing,
     solve,
     sweep,
+    warm_up,
 )
-from solver.compiled import compile_now, model_for
 
 __all__ = [
     "Failure",
@@ -59,10 +56,7 @@ class SolveJob:
     wing: Wing
     flight: FlightCondition
     options: SolverOptions
-    initial_guess: np.ndarray | None = None  # (4N - 1,) solver state
-    # True when the service chose the guess (a stored stable equilibrium): a hint that must not
-    # change the answer, unlike a guess the user supplied.
-    hint: bool = False
+    initial_guess: np.ndarray | None = None  # (n,) the caller's own starting state
 
 
 @dataclass(frozen=True)
@@ -91,15 +85,11 @@ class Failure:
 class SolveOutcome:
     payload: Payload | None  # a SolveResponse as a dict
     failure: Failure | None
-    state: np.ndarray | None = None  # converged solver state, for warm starts
-    stable: bool = False
 
 
 @dataclass(frozen=True)
 class SweepOutcome:
     payload: Payload  # a SweepResponse as a dict
-    # (dynamic pressure [Pa], state) of every stable equilibrium, for warm starts
-    states: list[tuple[float, np.ndarray]] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -114,6 +104,7 @@ class WarmReport:
 # The local pool's shared arrays, by dispatch slot: job start time (time.monotonic()) and pid.
 _starts: Any = None
 _pids: Any = None
+_warmed: dict[int, bool] = {}
 
 
 def initialize(
@@ -128,18 +119,19 @@ def initialize(
         _starts, _pids = starts, pids
     for n in warm_stations:
         try:
-            compile_now(n, timeout)
+            _warmed[n] = warm_up(n, timeout)
         except Exception:
             log.exception("warming N=%d failed; this worker uses CasADi's VM for it", n)
+            _warmed[n] = False
 
 
 def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
-    """Warm this worker (a no-op after the initializer) and report what it serves compiled.
+    """Warm this worker (quick after the initializer) and report what it serves compiled.
 
     Executors without an initializer (e.g. Dask's) are warmed by this job alone.
     """
     initialize(warm_stations, timeout)
-    return WarmReport(os.getpid(), {n: model_for(n).compiled for n in warm_stations})
+    return WarmReport(os.getpid(), {n: _warmed.get(n, False) for n in warm_stations})
 
 
 def run_timed(slot: int | None, fn: Callable[[Any], T], job: Any) -> T:
@@ -150,73 +142,11 @@ def run_timed(slot: int | None, fn: Callable[[Any], T], job: Any) -> T:
     return fn(job)
 
 
-# ------------------------------------------------------------------------------- conversion
+# --------------------------------------------------------------------------------- the jobs
 
 
 def _finite_or_none(value: float | None) -> float | None:
     return None if value is None or not math.isfinite(value) else float(value)
-
-
-def _dataclass_payload(obj: Any) -> Payload:
-    """A flat dataclass of numbers and strings as a dict, non-finite numbers as None."""
-    return {
-        k: (_finite_or_none(v) if isinstance(v, float) else v)
-        for k, v in dataclasses.asdict(obj).items()
-    }
-
-
-def equilibrium_payload(eq: Equilibrium) -> Payload:
-    """An equilibrium as a SolveResponse dict."""
-    stability = eq.stability
-    payload: Payload = {
-        "stations": {
-            "y": eq.y.tolist(),
-            "heave": eq.heave.tolist(),
-            "slope": eq.slope.tolist(),
-            "twist": eq.twist.tolist(),
-            "shear": eq.shear.tolist(),
-            "bending_moment": eq.bending_moment.tolist(),
-            "torque": eq.torque.tolist(),
-        },
-        "panels": {
-            "y": eq.panel_y.tolist(),
-            "lift": eq.panel_lift.tolist(),
-            "lift_per_span": eq.panel_lift_per_span.tolist(),
-            "torque": eq.panel_torque.tolist(),
-        },
-        "totals": {
-            "lift": eq.lift,
-            "induced_drag": eq.induced_drag,
-            "CL": eq.CL,
-            "CDi": eq.CDi,
-            "CL_deformed_area": eq.CL * eq.reference_area / eq.deformed_area,
-            "reference_area": eq.reference_area,
-            "deformed_area": eq.deformed_area,
-            "rigid_lift": eq.rigid_lift,
-            "lift_amplification": _finite_or_none(eq.lift_amplification),
-            "tip_heave": eq.tip_heave,
-            "tip_twist": eq.tip_twist,
-            "root_bending_moment": eq.root_bending_moment,
-            "root_torque": eq.root_torque,
-        },
-        "stability": {
-            "stable": stability.stable,
-            "margin": stability.margin,
-            "local_divergence_pressure": stability.local_divergence_pressure,
-            "divergence_dynamic_pressure": stability.divergence_dynamic_pressure,
-            "divergence_velocity": stability.divergence_velocity,
-        },
-        "solver": {
-            "iterations": eq.iterations,
-            "residual_norm": eq.residual_norm,
-            "warm_start": eq.warm_start,
-            "seconds": eq.seconds,
-            "cached": False,
-        },
-    }
-    if eq.fold is not None:
-        payload["fold"] = _dataclass_payload(eq.fold)
-    return payload
 
 
 def _failure(error: SolverError, velocity: float) -> Failure:
@@ -234,68 +164,15 @@ def _failure(error: SolverError, velocity: float) -> Failure:
     return Failure("not_converged", str(error), velocity)
 
 
-# --------------------------------------------------------------------------------- the jobs
-
-
-def _solve(job: SolveJob) -> Equilibrium:
-    if job.hint:
-        # A stored state is only the service's hint: it may save time, never change the answer.
-        return solve(job.wing, job.flight, options=job.options, hint=job.initial_guess)
-    return solve(job.wing, job.flight, job.initial_guess, job.options)
-
-
 def run_solve(job: SolveJob) -> SolveOutcome:
     """One equilibrium, or the reason there is none."""
     try:
-        eq = _solve(job)
+        equilibrium = solve(job.wing, job.flight, job.initial_guess, job.options)
     except SolverError as error:
         return SolveOutcome(None, _failure(error, job.flight.velocity))
-    return SolveOutcome(equilibrium_payload(eq), None, eq.state, eq.stability.stable)
-
-
-def _divergence_payload(summary: DivergenceSummary) -> Payload:
-    return {
-        "linear": _dataclass_payload(summary.linear),
-        "fit": _dataclass_payload(summary.fit),
-        "fold": _dataclass_payload(summary.fold),
-    }
+    return SolveOutcome(payload(equilibrium), None)
 
 
 def run_sweep(job: SweepJob) -> SweepOutcome:
-    started = time.perf_counter()
     result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
-    points: list[Payload] = []
-    states: list[tuple[float, np.ndarray]] = []
-    for point in result.points:
-        eq = point.equilibrium
-        if eq is not None:
-            points.append(
-                {
-                    "velocity": point.velocity,
-                    "status": "equilibrium",
-                    "equilibrium": equilibrium_payload(eq),
-                    "no_equilibrium": None,
-                }
-            )
-            if eq.stability.stable:
-                states.append((eq.dynamic_pressure, eq.state))
-            continue
-        error = point.error if point.error is not None else SolverError("no result")
-        failure = _failure(error, point.velocity)
-        points.append(
-            {
-                "velocity": point.velocity,
-                "status": failure.kind,
-                "equilibrium": None,
-                "no_equilibrium": {
-                    "reason": failure.message,
-                    "fold_velocity": failure.fold_velocity,
-                },
-            }
-        )
-    payload = {
-        "points": points,
-        "divergence": _divergence_payload(result.divergence),
-        "solver": {"seconds": time.perf_counter() - started, "cached": False},
-    }
-    return SweepOutcome(payload, states)
+    return SweepOutcome(payload(result))

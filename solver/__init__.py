@@ -4,6 +4,8 @@ A vortex lattice (one chordwise panel per strip) and a cantilever beam share the
 unknowns; the coupled equations are solved as one nonlinear system by Newton's method on an exact
 CasADi Jacobian, compiled once per mesh size. See the design study in shared/seed/.
 
+This module is the package's public face: the web service and users import from here only.
+
 Importing the package before numpy sets OPENBLAS_NUM_THREADS=1 unless it is already set: the
 solver's dense systems are small (119 x 119 at N = 30), and threaded OpenBLAS on a shared machine
 makes them 100x slower (measured: 0.3 ms single-threaded, up to 460 ms threaded during a compile).
@@ -13,28 +15,42 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from solver.divergence import (
+from solver.cache import CacheInfo, cache_info, clear_caches
+from solver.divergence import divergence_summary, find_fold, fit_divergence, linear_divergence
+from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, SolverError
+from solver.inputs import (
+    ISA_SEA_LEVEL_DENSITY,
+    MIN_STATIONS,
+    FlightCondition,
+    SolverOptions,
+    Wing,
+)
+from solver.jig import linear_divergence_pressure
+from solver.layout import Layout
+from solver.results import (
     DivergenceSummary,
+    Equilibrium,
     FitDivergence,
     Fold,
     LinearDivergence,
-    divergence_summary,
-    find_fold,
-    fit_divergence,
-    linear_divergence,
-)
-from solver.equilibrium import (
-    Equilibrium,
-    SolverOptions,
+    Panels,
+    PointFailure,
+    SolveInfo,
     Stability,
-    linear_divergence_pressure,
-    solve,
+    Stations,
+    SweepInfo,
+    SweepPoint,
+    SweepResult,
+    Totals,
 )
-from solver.errors import ConvergenceError, NoEquilibrium, SolverError
-from solver.sweep import SweepPoint, SweepResult, sweep
-from solver.wing import FlightCondition, InvalidInput, Wing
+from solver.solve import solve
+from solver.sweep import sweep
+from solver.warm import warm_up
 
 __all__ = [
+    "ISA_SEA_LEVEL_DENSITY",
+    "MIN_STATIONS",
+    "CacheInfo",
     "ConvergenceError",
     "DivergenceSummary",
     "Equilibrium",
@@ -42,14 +58,23 @@ __all__ = [
     "FlightCondition",
     "Fold",
     "InvalidInput",
+    "Layout",
     "LinearDivergence",
     "NoEquilibrium",
+    "Panels",
+    "PointFailure",
+    "SolveInfo",
     "SolverError",
     "SolverOptions",
     "Stability",
+    "Stations",
+    "SweepInfo",
     "SweepPoint",
     "SweepResult",
+    "Totals",
     "Wing",
+    "cache_info",
+    "clear_caches",
     "divergence_summary",
     "find_fold",
     "fit_divergence",
@@ -57,4 +82,5 @@ __all__ = [
     "linear_divergence_pressure",
     "solve",
     "sweep",
+    "warm_up",
 ]

@@ -23,6 +23,7 @@ to ~1e-10 relative.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections.abc import Callable
@@ -30,17 +31,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.compiled import Evaluation
-from solver.model import Layout
+from solver.evaluation import Evaluation
+from solver.layout import Layout
 
-__all__ = ["BranchPoint", "Branch", "ContinuationSettings", "trace_branch", "branch_scales"]
+__all__ = [
+    "Branch",
+    "BranchPoint",
+    "BranchTracer",
+    "ContinuationSettings",
+    "branch_scales",
+    "scaled_norm",
+]
 
 
 @dataclass(frozen=True)
 class ContinuationSettings:
     """Step control of the continuation, in scaled coordinates (see the module docstring).
 
-    tolerance: max-norm of r at a corrected point (units in `solver.model`).
+    tolerance: max-norm of r at a corrected point (units in `solver.residual`).
     initial_step, min_step, max_step: arclength steps [-].
     max_corrector_iterations: Newton iterations before a step is rejected and halved.
     target_correction: the first corrector update we aim for, relative to the step: the
@@ -71,7 +79,7 @@ class ContinuationSettings:
 class BranchPoint:
     """A converged equilibrium on the branch.
 
-    state: (4N-1,) x at this point (units in `solver.model`).
+    state: (4N-1,) x at this point (units in `solver.residual`).
     dynamic_pressure: q [Pa].
     tangent: (4N,) unit tangent dw/ds in scaled coordinates, oriented along the branch.
     arclength: s [-] from the jig, in scaled coordinates (chord lengths between points).
@@ -81,6 +89,7 @@ class BranchPoint:
     dynamic_pressure: float
     tangent: np.ndarray
     arclength: float
+    evaluations: int = 0  # model evaluations spent from the jig to this point
 
     @property
     def dq_ds(self) -> float:
@@ -169,6 +178,11 @@ def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: f
 
 def _scaled(x: np.ndarray, q: float, scale: np.ndarray) -> np.ndarray:
     return np.append(x, q) / scale
+
+
+def scaled_norm(dx: np.ndarray, scale: np.ndarray) -> float:
+    """Euclidean norm of a state difference (n,) in the scaled coordinates of `scale` (n + 1,)."""
+    return float(np.linalg.norm(dx / scale[:-1]))
 
 
 def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarray) -> np.ndarray:
@@ -262,37 +276,90 @@ class _Tracer:
         return None
 
 
-def trace_branch(
-    evaluate: Callable[[np.ndarray], Evaluation],
-    jig_state: np.ndarray,
-    scale: np.ndarray,
-    q_limit: float,
-    settings: ContinuationSettings | None = None,
-) -> Branch:
-    """Follow the branch from (jig_state, q = 0) until its fold or until q >= q_limit [Pa].
+class BranchTracer:
+    """The branch from (jig_state, q = 0), traced lazily and resumably.
+
+    `extend(q_limit)` follows the branch until a point reaches q_limit, the fold, or a stall;
+    a later `extend` to a higher limit continues from the stored step state exactly where a
+    single longer trace would be. The points traced are therefore a function of the wing and
+    alpha alone, never of the limits asked for or their order: `view(q_limit)` is the canonical
+    prefix a fresh trace to q_limit would have produced.
 
     `evaluate(x)` returns r0, r1, J0, J1 at x for the wing and alpha of interest; `jig_state`
     must solve r0 = 0 (the rigid solution, which is exact at q = 0).
     """
-    settings = settings or ContinuationSettings()
-    tracer = _Tracer(evaluate, scale, settings)
-    w = _scaled(jig_state, 0.0, scale)
-    evaluation = tracer.evaluate(w)
-    upward = np.zeros(w.size)
-    upward[-1] = 1.0
-    tangent = _tangent(evaluation, 0.0, scale, upward)
-    orientation = _orientation(evaluation, 0.0, scale, tangent)
-    points = [BranchPoint(jig_state.copy(), 0.0, tangent, 0.0)]
 
-    def finish(folded: bool, reason: str | None = None) -> Branch:
-        return Branch(tuple(points), folded, scale, q_limit, tracer.evaluations, reason)
+    def __init__(
+        self,
+        evaluate: Callable[[np.ndarray], Evaluation],
+        jig_state: np.ndarray,
+        scale: np.ndarray,
+        settings: ContinuationSettings | None = None,
+    ) -> None:
+        self._tracer = _Tracer(evaluate, scale, settings or ContinuationSettings())
+        self.scale = scale
+        w = _scaled(jig_state, 0.0, scale)
+        evaluation = self._tracer.evaluate(w)
+        upward = np.zeros(w.size)
+        upward[-1] = 1.0
+        tangent = _tangent(evaluation, 0.0, scale, upward)
+        self._orientation = _orientation(evaluation, 0.0, scale, tangent)
+        self.points: list[BranchPoint] = [
+            BranchPoint(jig_state.copy(), 0.0, tangent, 0.0, self._tracer.evaluations)
+        ]
+        self._step = self._tracer.settings.initial_step
+        self._steps = 0
+        self.folded = False
+        self.reason: str | None = None  # why tracing stopped for good short of the fold
 
-    step = settings.initial_step
-    for _ in range(settings.max_steps):
-        current = points[-1]
-        w = _scaled(current.state, current.dynamic_pressure, scale)
+    @property
+    def finished(self) -> bool:
+        return self.folded or self.reason is not None
+
+    @property
+    def nbytes(self) -> int:
+        return sum(point.state.nbytes + point.tangent.nbytes for point in self.points)
+
+    def extend(self, q_limit: float) -> None:
+        """Trace on until the last point reaches q_limit [Pa], the fold, or a stall."""
+        settings = self._tracer.settings
+        while not self.finished and self.points[-1].dynamic_pressure < q_limit:
+            if self._steps >= settings.max_steps:
+                self.reason = f"no fold within {settings.max_steps} continuation steps"
+                return
+            self._steps += 1
+            self._advance()
+
+    def view(self, q_limit: float) -> Branch:
+        """The canonical branch up to q_limit: points to the first at or beyond it (or the
+        fold, or the stall), exactly as a fresh trace to q_limit would hold them."""
+        self.extend(q_limit)
+        points = self.points
+        for index, point in enumerate(points):
+            if point.dynamic_pressure >= q_limit:
+                is_last = index == len(points) - 1
+                return Branch(
+                    tuple(points[: index + 1]),
+                    self.folded and is_last,
+                    self.scale,
+                    q_limit,
+                    point.evaluations,
+                    self.reason if is_last else None,
+                )
+        return Branch(
+            tuple(points), self.folded, self.scale, q_limit, points[-1].evaluations, self.reason
+        )
+
+    def _advance(self) -> None:
+        """One predictor-corrector step (or a rejected one, which halves the step)."""
+        settings = self._tracer.settings
+        current = self.points[-1]
+        step = self._step
+        w = _scaled(current.state, current.dynamic_pressure, self.scale)
         predicted = w + step * current.tangent
-        corrected = tracer.correct(predicted, current.tangent, float(current.tangent @ predicted))
+        corrected = self._tracer.correct(
+            predicted, current.tangent, float(current.tangent @ predicted)
+        )
         turn = (
             math.acos(min(1.0, float(corrected.tangent @ current.tangent)))
             if corrected is not None
@@ -308,20 +375,20 @@ def trace_branch(
             corrected is None
             or turn > settings.max_turn
             or corrected.displacement > settings.max_displacement * step
-            or corrected.orientation != orientation
+            or corrected.orientation != self._orientation
             or corrected.w[-1] <= 0
         ):
-            step /= 2
-            if step < settings.min_step:
-                return finish(False, _stalled(current))
-            continue
-        point = _point(corrected, scale, current)
+            self._step = step / 2
+            if self._step < settings.min_step:
+                self.reason = _stalled(current)
+            return
+        point = _point(corrected, self.scale, current, self._tracer.evaluations)
         if point.dq_ds <= 0:
-            points.append(_locate_fold(tracer, current, point, orientation))
-            return finish(True)
-        points.append(point)
-        if point.dynamic_pressure >= q_limit:
-            return finish(False)
+            fold = _locate_fold(self._tracer, current, point, self._orientation)
+            self.points.append(dataclasses.replace(fold, evaluations=self._tracer.evaluations))
+            self.folded = True
+            return
+        self.points.append(point)
         # Aim the next predictor error and turn at their targets; the predictor's error grows
         # as step^2, the turn as step.
         growth = min(
@@ -329,8 +396,7 @@ def trace_branch(
             settings.max_turn / 2 / max(turn, 1e-300),
             2.0,
         )
-        step = min(max(growth, 0.5) * step, settings.max_step)
-    return finish(False, f"no fold within {settings.max_steps} continuation steps")
+        self._step = min(max(growth, 0.5) * step, settings.max_step)
 
 
 def _stalled(point: BranchPoint) -> str:
@@ -340,12 +406,14 @@ def _stalled(point: BranchPoint) -> str:
     )
 
 
-def _point(corrected: _Corrected, scale: np.ndarray, previous: BranchPoint) -> BranchPoint:
+def _point(
+    corrected: _Corrected, scale: np.ndarray, previous: BranchPoint, evaluations: int
+) -> BranchPoint:
     """A branch point from a corrected one; arclength accumulates chord lengths."""
     x = corrected.w[:-1] * scale[:-1]
     q = float(corrected.w[-1] * scale[-1])
     chord = np.linalg.norm(corrected.w - _scaled(previous.state, previous.dynamic_pressure, scale))
-    return BranchPoint(x, q, corrected.tangent, previous.arclength + float(chord))
+    return BranchPoint(x, q, corrected.tangent, previous.arclength + float(chord), evaluations)
 
 
 def _locate_fold(
@@ -377,7 +445,7 @@ def _locate_fold(
         if corrected is None or corrected.orientation != orientation:
             break
         # Hyperplanes orthogonal to `normal` keep the orientation of `before`'s tangent.
-        trial = _point(corrected, scale, before)
+        trial = _point(corrected, scale, before, tracer.evaluations)
         if abs(trial.dq_ds) < abs(best.dq_ds):
             best = trial
         if trial.dq_ds > 0:

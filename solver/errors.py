@@ -1,8 +1,21 @@
-"""Typed failures of the solver. Every way a solve can fail without a bug ends in one of these."""
+"""Typed failures. Bad inputs raise `InvalidInput`; every way a valid solve can end without an
+equilibrium raises a `SolverError`."""
 
 from __future__ import annotations
 
-__all__ = ["SolverError", "ConvergenceError", "NoEquilibrium"]
+__all__ = ["ConvergenceError", "InvalidInput", "NoEquilibrium", "SolverError"]
+
+
+class InvalidInput(ValueError):
+    """An input that cannot describe a physical wing or flight condition.
+
+    `field` names the offending input (e.g. ``"chord"``), `reason` says what is wrong with it.
+    """
+
+    def __init__(self, field: str, reason: str) -> None:
+        super().__init__(f"{field}: {reason}")
+        self.field = field
+        self.reason = reason
 
 
 class SolverError(Exception):
@@ -10,13 +23,13 @@ class SolverError(Exception):
 
 
 class ConvergenceError(SolverError):
-    """Newton's method stopped without meeting the residual tolerance.
+    """Newton's method, or the path to the requested condition, stopped short of an equilibrium.
 
     Attributes:
         velocity: [m/s] airspeed of the attempted solve.
         iterations: Newton iterations taken.
-        residual_norm: max-norm of the final residual (mixed units, see `solver.model`).
-        reason: what stopped it (iteration limit, singular Jacobian, non-finite residual...).
+        residual_norm: max-norm of the final residual (mixed units, see `solver.residual`).
+        reason: what stopped it (iteration limit, singular Jacobian, a stalled branch...).
     """
 
     def __init__(self, velocity: float, iterations: int, residual_norm: float, reason: str):
@@ -31,21 +44,24 @@ class ConvergenceError(SolverError):
 
 
 class NoEquilibrium(SolverError):
-    """No static equilibrium exists on the branch from the jig shape at this airspeed.
+    """No statically stable equilibrium exists on the branch from the jig shape at this airspeed.
 
     Attributes:
         velocity: [m/s] requested airspeed.
         fold_velocity: [m/s] where the equilibrium branch from the jig shape ends (its fold), or
-            None if it could not be located.
+            None if it has none below the requested speed (e.g. the branch continues but is
+            statically unstable there).
+        detail: why, beyond the fold speed.
     """
 
     def __init__(self, velocity: float, fold_velocity: float | None, detail: str = "") -> None:
         self.velocity = velocity
         self.fold_velocity = fold_velocity
+        self.detail = detail
         where = (
-            f"beyond the fold of the equilibrium branch at {fold_velocity:.4g} m/s"
+            f"beyond the fold of the equilibrium branch at {fold_velocity:.6g} m/s"
             if fold_velocity is not None
-            else "the equilibrium branch from the jig shape does not reach it"
+            else "the equilibrium branch from the jig shape has no stable equilibrium there"
         )
         message = f"no static aeroelastic equilibrium at V = {velocity:g} m/s: {where}"
         super().__init__(message + (f" ({detail})" if detail else ""))

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.compiled import Evaluation
+from solver.evaluation import Evaluation
 
 __all__ = ["NewtonResult", "newton"]
 

@@ -1,119 +1,105 @@
-"""What `solve` does when Newton fails or lands on a statically unstable equilibrium.
+"""What an answer is when the path to the requested airspeed does not end in a stable
+equilibrium: the branch from the jig shape decides.
 
-Newton from a poor start near or past the fold either wanders off or converges to another,
-unstable branch (for the study's wing and rect_public: a nose-down, negative-lift branch that
-never joins the jig's). Neither may reach the user as a plain answer. The branch from the jig
-shape decides:
+Natural-parameter steps stall approaching a fold, and Newton from a poor start can wander off or
+land on another, statically unstable branch (for the study's wing and rect_public: a nose-down,
+negative-lift branch that never joins the jig's). Neither may reach the user as a plain answer.
+The branch from the jig (pseudo-arclength continuation, `solver.branch`) decides:
 
-- beyond its fold: `NoEquilibrium` naming the fold speed; except that an unstable equilibrium
-  reached from a start the caller chose (a raw state, or an unstable equilibrium) is returned,
-  flagged by its `stability`.
-- below the fold: Newton again, from the branch state at this q (Hermite-interpolated from the
-  continuation); if that fails too, the original `ConvergenceError`; if it finds only unstable
-  equilibria, `NoEquilibrium` (an unstable state from the solver's own start is never an answer).
+- beyond its fold: `NoEquilibrium` naming the fold speed;
+- below the fold: Newton from the branch's own (interpolated) state at this q; a stable
+  equilibrium is the answer; an unstable one is `NoEquilibrium` (the branch has no stable
+  equilibrium here), a failure `ConvergenceError`;
+- where the branch could not be followed that far: `ConvergenceError` saying why.
+
+Every outcome depends on the wing, alpha and q only: the branch is canonical.
 """
 
 from __future__ import annotations
 
-import dataclasses
+import time
 
-import numpy as np
-
-from solver.compiled import model_for
-from solver.divergence import Fold, equilibrium_branch, find_fold, search_velocity_limit
-from solver.equilibrium import Equilibrium, SolverOptions, equilibrium_from_state
+from solver.branch import branch, fold, search_velocity_limit
+from solver.equilibrium import judge
 from solver.errors import ConvergenceError, NoEquilibrium
+from solver.inputs import FlightCondition, SolverOptions
 from solver.newton import newton
-from solver.wing import FlightCondition, Wing
+from solver.results import Equilibrium
+from solver.system import CoupledSystem
 
-__all__ = ["settle"]
+__all__ = ["from_branch", "settle"]
 
 
 def settle(
-    wing: Wing,
+    system: CoupledSystem,
     flight: FlightCondition,
-    initial_guess: Equilibrium | np.ndarray | None,
-    equilibrium: Equilibrium | None,
-    failure: ConvergenceError | None,
     options: SolverOptions,
+    prior_iterations: int,
     started: float,
 ) -> Equilibrium:
-    """The answer of `solve` given Newton's outcome: `equilibrium` if it converged, else `failure`.
-
-    Stable equilibria pass through (with the fold attached if `options.find_fold`); every
-    other answer carries the fold it was judged by.
-    """
-    fold: Fold | None = None
-    if options.find_fold:
-        fold = _fold(wing, flight)
-    if equilibrium is not None and equilibrium.stability.stable:
-        return _with_fold(equilibrium, fold)
-    fold = fold or _fold(wing, flight)
-    callers_start = initial_guess is not None and not (
-        isinstance(initial_guess, Equilibrium) and initial_guess.stability.stable
-    )
-    if equilibrium is not None and callers_start:
-        return _with_fold(equilibrium, fold)  # the caller's own start: flagged, not replaced
-    if fold.velocity is not None and flight.velocity > fold.velocity:
-        raise NoEquilibrium(flight.velocity, fold.velocity)
-    attempt = equilibrium if equilibrium is not None else failure
-    assert attempt is not None  # Newton either converged or failed
-    first_attempt = attempt.iterations
-    retried = _from_branch(wing, flight, options, started, first_attempt)
-    if retried is not None and retried.stability.stable:
-        return _with_fold(retried, fold)
-    if equilibrium is not None or retried is not None:
-        # Only statically unstable equilibria, from the solver's own starts: not an answer.
-        raise NoEquilibrium(
-            flight.velocity, fold.velocity, "only statically unstable equilibria were found"
-        )
-    assert failure is not None
-    raise failure
+    """The answer at `flight` from the branch from the jig (the path did not give one)."""
+    limit = search_velocity_limit(system, flight.density, flight.velocity)
+    found = fold(system, flight.density, limit)
+    if found.velocity is not None and flight.velocity > found.velocity:
+        raise NoEquilibrium(flight.velocity, found.velocity)
+    return from_branch(system, flight, options, prior_iterations, started, limit)
 
 
-def _fold(wing: Wing, flight: FlightCondition) -> Fold:
-    limit = search_velocity_limit(wing, flight.density, flight.velocity)
-    return find_fold(wing, flight.alpha, flight.density, limit)
-
-
-def _with_fold(equilibrium: Equilibrium, fold: Fold | None) -> Equilibrium:
-    return equilibrium if fold is None else dataclasses.replace(equilibrium, fold=fold)
-
-
-def _from_branch(
-    wing: Wing,
+def from_branch(
+    system: CoupledSystem,
     flight: FlightCondition,
     options: SolverOptions,
-    started: float,
     prior_iterations: int,
-) -> Equilibrium | None:
-    """Newton from the continuation's state nearest in q, or None if it does not converge.
-
-    The equilibrium reports the Newton iterations of both attempts; it is a warm start (from a
-    traced branch state), whatever the caller's first start was.
-    """
+    started: float | None = None,
+    velocity_limit: float | None = None,
+) -> Equilibrium:
+    """Newton at `flight`'s q from the branch's state there (cubic Hermite in arclength, O(ds^4)
+    from the equilibrium, so one or two iterations); below the fold only."""
+    started = time.perf_counter() if started is None else started
     q = flight.dynamic_pressure
-    limit = search_velocity_limit(wing, flight.density, flight.velocity)
-    branch = equilibrium_branch(wing, flight.alpha, 0.5 * flight.density * limit**2)
-    model = model_for(wing.n_stations)
-    p = wing.parameters(flight.alpha)
+    if velocity_limit is None:
+        velocity_limit = search_velocity_limit(system, flight.density, flight.velocity)
+    traced = branch(system, 0.5 * flight.density * velocity_limit**2)
+    fold_point = traced.fold
+    if fold_point is not None and q > fold_point.dynamic_pressure:
+        fold_velocity = FlightCondition.velocity_for(fold_point.dynamic_pressure, flight.density)
+        raise NoEquilibrium(flight.velocity, fold_velocity)
+    if traced.reached_pressure < q:
+        reached = FlightCondition.velocity_for(traced.reached_pressure, flight.density)
+        why = traced.reason or "it ended"
+        raise ConvergenceError(
+            flight.velocity,
+            prior_iterations,
+            float("nan"),
+            f"the branch from the jig could be followed only to {reached:.6g} m/s ({why})",
+        )
     result = newton(
-        lambda x: model.evaluate(x, p),
-        lambda x: model.residual(x, p),
-        branch.start_for(q),
+        system.evaluate,
+        system.residual,
+        traced.start_for(q),
         q,
         options.tolerance,
         options.max_iterations,
     )
+    iterations = prior_iterations + result.iterations
     if not result.converged:
-        return None
-    return equilibrium_from_state(
-        wing,
+        raise ConvergenceError(flight.velocity, iterations, result.residual_norm, result.reason)
+    equilibrium = judge(
+        system,
         flight,
         result.x,
         result.evaluation,
-        iterations=prior_iterations + result.iterations,
+        iterations=iterations,
         residual_norm=result.residual_norm,
         warm_start=True,
         started=started,
     )
+    if not equilibrium.stability.stable:
+        local = equilibrium.stability.local_divergence_pressure
+        raise NoEquilibrium(
+            flight.velocity,
+            None,
+            "the equilibrium on the branch from the jig is statically unstable here: its local "
+            f"divergence pressure {local:.6g} Pa is below q = {q:.6g} Pa",
+        )
+    return equilibrium

@@ -1,43 +1,99 @@
 """Static aeroelastic stability from the residual's affine structure in q.
 
-With loads proportional to q, the Jacobian at a state x is J(x, q) = J0(x) + q J1(x) (in the
-issue's words J_structure - q J_aero, with J_aero = -J1). The divergence dynamic pressure at x is
-the smallest positive real lambda for which J0 + lambda J1 is singular:
+With loads proportional to the dynamic pressure q, the Jacobian at a state x is
+J(x, q) = J0(x) + q J1(x). The local divergence pressure at x is the smallest positive real
+lambda for which J0 + lambda J1 is singular,
 
-    J0 v = -lambda J1 v.
+    J0 v = -lambda J1 v,
 
-J1 is non-zero only in the 2(N-1) bending and torsion rows (the loads enter nowhere else), so with
-E selecting those rows (J1 = E K) the non-zero eigenvalues mu = 1/lambda of -J0^{-1} J1 are those
-of the small (2(N-1))^2 matrix -K J0^{-1} E.
+and an equilibrium at q is statically stable when lambda > q (the margin q / lambda is below 1).
+J1 is non-zero only in the load rows (bending and torsion: the loads enter nowhere else), so with
+E selecting those m rows (J1 = E K) the non-zero eigenvalues mu = 1/lambda of -J0^{-1} J1 are
+those of the small m x m matrix G = -K J0^{-1} E.
+
+The eigenvalue that matters is the largest positive real mu. For a wing that can diverge it is
+almost always also the largest in modulus, which power iteration on G finds in a few dozen cheap
+products; the full nonsymmetric eigenvalue solve (0.3 ms at N = 30, 12 ms at N = 120) runs only
+when power iteration cannot vouch for its answer (the dominant eigenvalue is negative, complex,
+or not separated from the next one).
+
+Meaningfully positive: mu must exceed `NEGLIGIBLE` times ||G|| (Frobenius). 1 / ||G|| is the
+dynamic pressure at which the loads become comparable to the wing's stiffness in its most
+compliant coupling (usually bending); a divergence pressure more than 1e9 times beyond it is
+round-off (a wing whose elastic axis lies exactly on its quarter chord has every mu at ~1e-30),
+and is reported as none, never as 1e29 Pa or infinity.
 """
 
 from __future__ import annotations
 
+import functools
+import math
+
 import numpy as np
 
-from solver.compiled import Evaluation
-from solver.model import Layout
+from solver.evaluation import Evaluation
 
-__all__ = ["divergence_pressure"]
+__all__ = ["NEGLIGIBLE", "divergence_pressure"]
 
-# An eigenvalue counts as real when its imaginary part is this small relative to its modulus.
+NEGLIGIBLE = 1e-9
+# An eigenvalue counts as real when its imaginary part is this small relative to ||G||.
 _REAL_TOLERANCE = 1e-8
+_POWER_ITERATIONS = 60
+# Power iteration is trusted once its eigen-residual is this small relative to ||G||.
+_POWER_RESIDUAL = 1e-11
 
 
-def divergence_pressure(evaluation: Evaluation, layout: Layout) -> float | None:
-    """Smallest positive real lambda [Pa] with J0 + lambda J1 singular, or None if there is none."""
-    equations = np.arange(layout.n_unknowns)
-    rows = np.r_[equations[layout.bending_rows], equations[layout.torsion_rows]]
-    load_rows = evaluation.jacobian1[rows]
-    selector = np.zeros((layout.n_unknowns, rows.size))
-    selector[rows, np.arange(rows.size)] = 1.0
+def divergence_pressure(evaluation: Evaluation, load_rows: np.ndarray) -> float | None:
+    """Smallest positive real lambda [Pa] with J0 + lambda J1 singular, or None if there is none.
+
+    `load_rows`: (m,) the equations in which J1 is non-zero.
+    """
+    n = evaluation.r0.size
+    selector = np.zeros((n, load_rows.size))
+    selector[load_rows, np.arange(load_rows.size)] = 1.0
     try:
         inverse_columns = np.linalg.solve(evaluation.jacobian0, selector)
     except np.linalg.LinAlgError:
         return None
-    mu = np.linalg.eigvals(-load_rows @ inverse_columns)
-    scale = np.max(np.abs(mu)) if mu.size else 0.0
-    real_positive = mu[(np.abs(mu.imag) <= _REAL_TOLERANCE * scale) & (mu.real > 0)].real
-    if real_positive.size == 0:
+    g = -evaluation.jacobian1[load_rows] @ inverse_columns
+    scale = float(np.linalg.norm(g))
+    if not math.isfinite(scale) or scale == 0.0:
         return None
-    return float(1.0 / np.max(real_positive))
+    mu = _dominant_positive_eigenvalue(g, scale)
+    if mu is None:
+        mu = _largest_positive_real_eigenvalue(g, scale)
+    if mu is None or mu <= NEGLIGIBLE * scale:
+        return None
+    return 1.0 / mu
+
+
+def _dominant_positive_eigenvalue(g: np.ndarray, scale: float) -> float | None:
+    """The eigenvalue of largest modulus by power iteration, if it is real, positive and
+    converged; None when power iteration cannot tell (then the full solve decides)."""
+    vector = _start_vector(g.shape[0])
+    for _ in range(_POWER_ITERATIONS):
+        image = g @ vector
+        norm = float(np.linalg.norm(image))
+        if norm == 0.0 or not math.isfinite(norm):
+            return None
+        mu = float(vector @ image)  # Rayleigh quotient (vector has unit length)
+        if float(np.linalg.norm(image - mu * vector)) <= _POWER_RESIDUAL * scale:
+            return mu if mu > 0 else None
+        vector = image / norm
+    return None
+
+
+@functools.lru_cache(maxsize=64)
+def _start_vector(m: int) -> np.ndarray:
+    """A fixed pseudo-random unit vector: deterministic, and almost surely not orthogonal to the
+    dominant eigenvector (as a symmetric start such as all-ones could be)."""
+    vector = np.random.default_rng(1).standard_normal(m)
+    vector /= np.linalg.norm(vector)
+    vector.setflags(write=False)
+    return vector
+
+
+def _largest_positive_real_eigenvalue(g: np.ndarray, scale: float) -> float | None:
+    mu = np.linalg.eigvals(g)
+    real_positive = mu[(np.abs(mu.imag) <= _REAL_TOLERANCE * scale) & (mu.real > 0)].real
+    return float(np.max(real_positive)) if real_positive.size else None

@@ -1,49 +1,30 @@
-"""Airspeed sweeps: each point warm-started from the previous equilibrium on the branch, and the
-wing's divergence reported alongside (linear, the study's fit, and the fold of the branch)."""
+"""Airspeed sweeps: every point from the branch from the jig shape, and the wing's divergence
+reported alongside (linear, the study's fit, and the fold of the branch)."""
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from typing import Literal
 
-from solver.divergence import (
+from solver.branch import fold, search_velocity_limit
+from solver.divergence import fit_divergence, linear_divergence
+from solver.errors import ConvergenceError, NoEquilibrium, SolverError
+from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.jig import jig
+from solver.recovery import from_branch
+from solver.results import (
     DivergenceSummary,
-    equilibrium_branch,
-    find_fold,
-    fit_divergence,
-    linear_divergence,
-    search_velocity_limit,
+    Fold,
+    PointFailure,
+    SweepInfo,
+    SweepPoint,
+    SweepResult,
 )
-from solver.equilibrium import Equilibrium, SolverOptions, solve
-from solver.errors import NoEquilibrium, SolverError
-from solver.wing import FlightCondition, Wing
+from solver.solve import numerical_failures_as, solve
+from solver.system import CoupledSystem
 
-__all__ = ["SweepPoint", "SweepResult", "sweep"]
-
-
-@dataclass(frozen=True)
-class SweepPoint:
-    """One requested airspeed: an equilibrium, or the typed reason there is none."""
-
-    velocity: float
-    equilibrium: Equilibrium | None
-    error: SolverError | None
-
-
-@dataclass(frozen=True)
-class SweepResult:
-    """The points in the requested order and the wing's divergence.
-
-    divergence.fold is searched to at least 1.5 times the fastest requested speed and past the
-    linear divergence speed; divergence.fit uses the sweep's stable equilibria.
-    """
-
-    points: list[SweepPoint]
-    divergence: DivergenceSummary
-
-    @property
-    def equilibria(self) -> list[Equilibrium]:
-        return [point.equilibrium for point in self.points if point.equilibrium is not None]
+__all__ = ["sweep"]
 
 
 def sweep(
@@ -53,35 +34,50 @@ def sweep(
     density: float,
     options: SolverOptions | None = None,
 ) -> SweepResult:
-    """Solve at each airspeed [m/s] in the given order.
+    """Solve at each airspeed [m/s], answered in the given order.
 
-    The branch from the jig shape is followed first, to its fold: a speed beyond the fold is
-    answered with `NoEquilibrium` without a solve (Newton would fail there, or land on another,
-    unstable branch). Every other speed is solved with the branch's interpolated state as a
-    `hint` (usually one Newton iteration; a hint cannot change the answer). A point that fails
-    is recorded with its error.
+    The branch from the jig shape is followed first, to its fold (or to 1.5 times the fastest
+    speed and past the linear divergence speed): a speed beyond the fold is answered with
+    `NoEquilibrium` without a solve; every other one by Newton from the branch's state at its q
+    (usually one iteration). The answers depend on the wing, alpha, density and each speed only,
+    never on the order or on what was solved before; each agrees with `solve` at that speed to
+    the residual tolerance.
     """
-    limit = search_velocity_limit(wing, density, max(velocities, default=0.0))
-    fold = find_fold(wing, alpha, density, limit)
-    branch = equilibrium_branch(wing, alpha, 0.5 * density * limit**2)  # traced by find_fold
+    started = time.perf_counter()
+    options = options or SolverOptions()
+    system = CoupledSystem(wing, alpha)
+    fastest = max(velocities, default=0.0)
+    limit = search_velocity_limit(system, density, fastest)
+    try:
+        with numerical_failures_as(fastest):
+            found = fold(system, density, limit)
+    except ConvergenceError as error:
+        found = Fold(None, None, None, None, 0.0, f"the branch could not be traced: {error.reason}")
     points: list[SweepPoint] = []
     for velocity in velocities:
         flight = FlightCondition(velocity=velocity, alpha=alpha, density=density)
-        if fold.velocity is not None and velocity > fold.velocity:
-            points.append(SweepPoint(velocity, None, NoEquilibrium(velocity, fold.velocity)))
-            continue
         try:
-            # The branch's Hermite interpolation is within a Newton step or so of the answer.
-            hint = branch.start_for(flight.dynamic_pressure)
-            equilibrium = solve(wing, flight, options=options, hint=hint)
+            if found.velocity is not None and velocity > found.velocity:
+                raise NoEquilibrium(velocity, found.velocity)
+            with numerical_failures_as(velocity):
+                if jig(system).unloaded:
+                    equilibrium = solve(wing, flight, options=options)
+                else:
+                    equilibrium = from_branch(system, flight, options, 0, velocity_limit=limit)
         except SolverError as error:
-            points.append(SweepPoint(velocity, None, error))
+            points.append(_failed(velocity, error))
             continue
-        points.append(SweepPoint(velocity, equilibrium, None))
-    stable = [point.equilibrium for point in points if point.equilibrium is not None]
+        points.append(SweepPoint(None, velocity, "equilibrium", equilibrium, None))
+    stable = [p.equilibrium for p in points if p.equilibrium is not None]
     divergence = DivergenceSummary(
-        linear=linear_divergence(wing, density),
-        fit=fit_divergence(stable),
-        fold=fold,
+        linear=linear_divergence(wing, density), fit=fit_divergence(stable), fold=found
     )
-    return SweepResult(points, divergence)
+    return SweepResult(points, divergence, SweepInfo(time.perf_counter() - started))
+
+
+def _failed(velocity: float, error: SolverError) -> SweepPoint:
+    fold_velocity = error.fold_velocity if isinstance(error, NoEquilibrium) else None
+    status: Literal["no_equilibrium", "not_converged"] = (
+        "not_converged" if isinstance(error, ConvergenceError) else "no_equilibrium"
+    )
+    return SweepPoint(error, velocity, status, None, PointFailure(str(error), fold_velocity))

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "ci")
@@ -36,3 +37,22 @@ _SCALE = {"ci": 1, "nightly": 20}
 def fuzz_examples(ci: int) -> int:
     """`ci` examples under the ci profile, proportionally more under the longer ones."""
     return ci * _SCALE.get(PROFILE, 1)
+
+
+# Fixtures that start a real server: a test module using any of them is a live-server module.
+_SERVER_FIXTURES = {"server", "fault_server", "make_server"}
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark live-server modules `server` and run them after everything else: the unit tests
+    (seconds) fail first, the live servers (minutes) come last. A whole module moves, so its
+    module-scoped servers start once."""
+    server_modules = {
+        item.module.__name__
+        for item in items
+        if isinstance(item, pytest.Function) and _SERVER_FIXTURES & set(item.fixturenames)
+    }
+    for item in items:
+        if isinstance(item, pytest.Function) and item.module.__name__ in server_modules:
+            item.add_marker(pytest.mark.server)
+    items.sort(key=lambda item: item.get_closest_marker("server") is not None)

@@ -37,7 +37,7 @@ from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType
 from app.service import Service
 from app.settings import Settings
 
-__all__ = ["JobContext", "JobManager", "LiveJob", "job_view"]
+__all__ = ["JobManager", "LiveJob", "job_view"]
 
 log = logging.getLogger(__name__)
 
@@ -148,9 +148,9 @@ class LiveJob:
 
 
 @dataclass
-class JobContext:
-    """What an operation's `run` gets: the service, how many items to keep in flight, and a
-    place to record batch items."""
+class _Context:
+    """An operation's `operations.JobContext`: the service, how many items to keep in flight,
+    and a place to record batch items."""
 
     manager: JobManager
     job: LiveJob
@@ -270,7 +270,7 @@ class JobManager:
         self._count("queued", "running")
         job.notify()
         try:
-            result = await job.operation.run(JobContext(self, job), job.request)
+            result = await job.operation.run(_Context(self, job), job.request)
         except asyncio.CancelledError:
             if job.cancel_requested:
                 self._finish(job, "cancelled")

@@ -1,28 +1,20 @@
 """Request and response models of the jobs API (POST /jobs, GET /jobs/{id}, ...).
 
 The submission body is `{"operation": <name>, "request": <what that endpoint takes>}`; its model is
-built from the operations registry (`submission_type`), so a new operation adds itself. Validation
-errors name fields from the body's root (`request.items[3].wing.chord[2]`): the union's tags start
-with "@", which `app.problems` leaves out of field paths. An operation that does not exist is an
-error on `operation`.
+built from the operations registry (`app.jobs.operations.submission_type`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from datetime import datetime
-from typing import TYPE_CHECKING, Annotated, Any, Literal, Union
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, create_model
-from pydantic.json_schema import SkipJsonSchema
+from pydantic import BaseModel, ConfigDict, Field
 
 from app.problems import ProblemDetails
 from app.schemas import SolveRequest, SolveResponse, study_wing
 from app.settings import MAX_BATCH_ITEMS
-from solver.wing import ISA_SEA_LEVEL_DENSITY
-
-if TYPE_CHECKING:
-    from app.jobs.operations import Operation
+from solver import ISA_SEA_LEVEL_DENSITY
 
 __all__ = [
     "JOB_STATES",
@@ -35,7 +27,7 @@ __all__ = [
     "JobProgress",
     "JobState",
     "JobStatus",
-    "submission_type",
+    "Request",
 ]
 
 JobState = Literal["queued", "running", "succeeded", "failed", "cancelled"]
@@ -43,7 +35,7 @@ JOB_STATES: tuple[str, ...] = ("queued", "running", "succeeded", "failed", "canc
 FINISHED_STATES = frozenset({"succeeded", "failed", "cancelled"})
 
 
-class _Request(BaseModel):
+class Request(BaseModel):
     # As app.schemas: a value of another JSON type than documented is invalid, not converted.
     model_config = ConfigDict(extra="forbid", strict=True)
 
@@ -59,7 +51,7 @@ STUDY_BATCH: dict[str, Any] = {
 }
 
 
-class BatchRequest(_Request):
+class BatchRequest(Request):
     """Independent solves (any wings, any flight conditions), answered in the same order."""
 
     model_config = ConfigDict(
@@ -80,7 +72,9 @@ class BatchItem(BaseModel):
 
     index: int = Field(description="[-] position of the item in `request.items`, from 0.")
     status: Literal["ok", "problem"] = Field(description="ok: `result`; problem: `problem`.")
-    result: SolveResponse | None = Field(default=None, description="The /solve response.")
+    result: SolveResponse | None = Field(  # type: ignore[valid-type]
+        default=None, description="The /solve response."
+    )
     problem: ProblemDetails | None = Field(
         default=None, description="The problem+json body /solve would have answered."
     )
@@ -149,36 +143,3 @@ class JobList(BaseModel):
 
     jobs: list[JobStatus]
     next: str | None = Field(description="The next page (a relative URL), or null at the end.")
-
-
-def submission_type(operations: Mapping[str, Operation]) -> Any:
-    """The POST /jobs body: one model per operation, told apart by `operation`."""
-    names = tuple(operations)
-
-    def tag(value: Any) -> str:
-        name = value.get("operation") if isinstance(value, dict) else None
-        return f"@{name}" if isinstance(name, str) and name in operations else "@unknown"
-
-    members: list[Any] = [
-        Annotated[_submission_model(op), Tag(f"@{name}")] for name, op in operations.items()
-    ]
-    unknown = create_model(
-        "UnknownJobSubmission",
-        __base__=_Request,
-        operation=(Literal[names], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
-        request=(Any, None),
-    )
-    members.append(Annotated[unknown, Tag("@unknown"), SkipJsonSchema()])
-    return Annotated[Union[tuple(members)], Discriminator(tag)]  # noqa: UP007
-
-
-def _submission_model(operation: Operation) -> type[BaseModel]:
-    name = operation.name
-    model: type[BaseModel] = create_model(
-        f"{name.capitalize()}JobSubmission",
-        __base__=_Request,
-        __doc__=f"Run {operation.summary} as a job.",
-        operation=(Literal[name], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
-        request=(operation.request_model, Field(description=operation.request_description)),
-    )
-    return model

@@ -18,26 +18,43 @@ from __future__ import annotations
 
 import asyncio
 import json
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Annotated, Any, Literal, Protocol, Union
 
-from pydantic import BaseModel
+from pydantic import BaseModel, Discriminator, Field, Tag, create_model
+from pydantic.json_schema import SkipJsonSchema
 
 from app.inputs import solve_input, sweep_input
-from app.jobs.models import BatchRequest
+from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem
 from app.schemas import SolveRequest, SolveResponse, SweepRequest, SweepResponse
+from app.service import Service
 from app.settings import Settings
 
-if TYPE_CHECKING:
-    from app.jobs.manager import JobContext
-
-__all__ = ["OPERATIONS", "Operation", "problem_body", "register"]
+__all__ = ["OPERATIONS", "JobContext", "Operation", "problem_body", "register", "submission_type"]
 
 # Problems that mean "not now" for a batch item: it waits and tries again instead of failing.
 _TRANSIENT = frozenset({"overloaded", "not-ready"})
 _MAX_BACKOFF = 1.0  # [s]
+
+
+class JobContext(Protocol):
+    """What an operation's `run` gets from the job manager."""
+
+    @property
+    def service(self) -> Service:
+        """The service the endpoints use (so a job answers what they answer)."""
+        ...
+
+    @property
+    def lanes(self) -> int:
+        """[-] items to keep in flight: enough to keep every worker busy."""
+        ...
+
+    def item_answered(self, index: int, ok: bool, line: str) -> None:
+        """Record batch item `index`'s NDJSON line (ok: a result, else a problem)."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -181,3 +198,44 @@ register(
         has_items=True,
     )
 )
+
+
+# ------------------------------------------------------------------ the POST /jobs body
+
+
+def submission_type(operations: Mapping[str, Operation]) -> Any:
+    """The POST /jobs body: one model per operation, told apart by `operation`.
+
+    Validation errors name fields from the body's root (`request.items[3].wing.chord[2]`): the
+    union's tags start with "@", which `app.problems` leaves out of field paths. An operation that
+    is not registered is an error on `operation` (a hidden last member of the union).
+    """
+    names = tuple(operations)
+
+    def tag(value: Any) -> str:
+        name = value.get("operation") if isinstance(value, dict) else None
+        return f"@{name}" if isinstance(name, str) and name in operations else "@unknown"
+
+    members: list[Any] = [
+        Annotated[_submission_model(op), Tag(f"@{name}")] for name, op in operations.items()
+    ]
+    unknown = create_model(
+        "UnknownJobSubmission",
+        __base__=Request,
+        operation=(Literal[names], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
+        request=(Any, None),
+    )
+    members.append(Annotated[unknown, Tag("@unknown"), SkipJsonSchema()])
+    return Annotated[Union[tuple(members)], Discriminator(tag)]  # noqa: UP007
+
+
+def _submission_model(operation: Operation) -> type[BaseModel]:
+    name = operation.name
+    model: type[BaseModel] = create_model(
+        f"{name.capitalize()}JobSubmission",
+        __base__=Request,
+        __doc__=f"Run {operation.summary} as a job.",
+        operation=(Literal[name], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
+        request=(operation.request_model, Field(description=operation.request_description)),
+    )
+    return model

@@ -1,5 +1,5 @@
 """HTTP routes, one module per tag."""
 
-from app.routes import health, solve, sweep
+from app.routes import health, page, solve, sweep
 
-__all__ = ["health", "solve", "sweep"]
+__all__ = ["health", "page", "solve", "sweep"]

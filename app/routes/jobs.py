@@ -16,8 +16,8 @@ from fastapi.responses import JSONResponse, Response, StreamingResponse
 from pydantic import TypeAdapter, ValidationError
 
 from app.jobs.manager import JobManager, job_view
-from app.jobs.models import STUDY_BATCH, JobList, JobStatus, submission_type
-from app.jobs.operations import Operation
+from app.jobs.models import STUDY_BATCH, JobList, JobStatus
+from app.jobs.operations import Operation, submission_type
 from app.problems import FieldError, Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
 

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from tests.app import study
+from tests import study
 
 MAX_BODY_BYTES = 1_000_000
 MAX_STATIONS = 150
@@ -85,7 +85,7 @@ def _with_raw_list(member: bytes, raw: bytes) -> bytes:
 
 
 def _sweep(velocities: Any) -> dict[str, Any]:
-    return {"wing": study.wing(), "flight": {"alpha": 5.0}, "velocities": velocities}
+    return {"wing": study.wing_json(), "flight": {"alpha": 5.0}, "velocities": velocities}
 
 
 MARK = 98765.4321  # a number replaced by a raw token in the JSON text
@@ -134,7 +134,7 @@ HOSTILE: list[Hostile] = [
     Hostile("word_velocity", "/solve", lambda: _json(_solve(velocity="ten")), 422,
             "invalid-input", frozenset({"flight.velocity"})),
     Hostile("empty_string_chord", "/solve",
-            lambda: _json(_solve(chord=[*study.wing()["chord"][:29], ""])), 422,
+            lambda: _json(_solve(chord=[*study.wing_json()["chord"][:29], ""])), 422,
             "invalid-input", frozenset({"wing.chord[29]"})),
     Hostile("object_alpha", "/solve", lambda: _json(_solve(alpha={"value": 5})), 422,
             "invalid-input", frozenset({"flight.alpha"})),
@@ -143,8 +143,8 @@ HOSTILE: list[Hostile] = [
     Hostile("string_wing", "/solve", lambda: _json(_solve(wing="study")), 422, "invalid-input",
             frozenset({"wing"})),
     # --- at the limits and one past
-    Hostile("N_150", "/solve", lambda: _json(_solve(wing=study.wing(n=MAX_STATIONS))), 200),
-    Hostile("N_151", "/solve", lambda: _json(_solve(wing=study.wing(n=MAX_STATIONS + 1))), 422,
+    Hostile("N_150", "/solve", lambda: _json(_solve(wing=study.wing_json(n=MAX_STATIONS))), 200),
+    Hostile("N_151", "/solve", lambda: _json(_solve(wing=study.wing_json(n=MAX_STATIONS + 1))), 422,
             "invalid-input", frozenset({"wing.y"})),
     Hostile("sweep_50_points", "/sweep",
             lambda: _json(_sweep(np.linspace(5, 21, MAX_SWEEP_POINTS).tolist())), 200),
@@ -163,7 +163,7 @@ WRONG_TYPES: list[Hostile] = [
     Hostile("numeric_string_velocity", "/solve", lambda: _json(_solve(velocity="10")), 422,
             "invalid-input", frozenset({"flight.velocity"})),
     Hostile("numeric_string_in_chord", "/solve",
-            lambda: _json(_solve(chord=[*study.wing()["chord"][:29], "0.15"])), 422,
+            lambda: _json(_solve(chord=[*study.wing_json()["chord"][:29], "0.15"])), 422,
             "invalid-input", frozenset({"wing.chord[29]"})),
     Hostile("boolean_velocity", "/solve", lambda: _json(_solve(velocity=True)), 422,
             "invalid-input", frozenset({"flight.velocity"})),

@@ -27,7 +27,7 @@ import pytest
 
 import solver
 from solver.compiled import cache_dir
-from tests.app import study
+from tests import study
 from tests.app.conftest import ROOT, Server
 
 pytest.importorskip("distributed", reason="FLEXWING_EXECUTOR=dask needs flexwing[dask]")
@@ -161,7 +161,11 @@ def test_solve_and_sweep_on_dask_give_the_studys_numbers(dask_service: Server) -
         totals = response.json()["totals"]
         assert totals["lift"] == pytest.approx(304.13, abs=0.005)
         assert totals["tip_twist"] == pytest.approx(1.708, abs=0.0005)
-        body = {"wing": study.wing(), "flight": {"alpha": 5.0}, "velocities": [6.0, 12.0, 22.0]}
+        body = {
+            "wing": study.wing_json(),
+            "flight": {"alpha": 5.0},
+            "velocities": [6.0, 12.0, 22.0],
+        }
         swept = client.post("/sweep", json=body).json()
     assert [p["status"] for p in swept["points"]] == ["equilibrium"] * 2 + ["no_equilibrium"]
     assert 21.43 < swept["divergence"]["fold"]["velocity"] < 21.45
@@ -174,13 +178,13 @@ def _speed(index: int) -> float:
 
 def _item(index: int) -> dict[str, Any]:
     return {
-        "wing": study.wing(),
+        "wing": study.wing_json(),
         "flight": {"velocity": _speed(index), "alpha": 5.0, "density": 1.225},
     }
 
 
 def _expected_lift(velocity: float) -> float:
-    wing = solver.Wing.create(**study.wing())
+    wing = solver.Wing.create(**study.wing_json())
     return solver.solve(wing, solver.FlightCondition(velocity, 5.0, 1.225)).lift
 
 

@@ -7,8 +7,9 @@ from collections.abc import Iterator
 from typing import Any
 
 import httpx
+import pytest
 
-from tests.app import study
+from tests import study
 
 
 def _problem(response: httpx.Response, status: int, kind: str) -> dict[str, Any]:
@@ -37,7 +38,7 @@ def _invalid(client: httpx.Client, body: Any, path: str = "/solve") -> dict[str,
 
 
 def test_non_finite_numbers(client: httpx.Client) -> None:
-    chord = study.wing()["chord"]
+    chord = study.wing_json()["chord"]
     text = json.dumps(_with_wing(chord=chord)).replace(str(chord[3]), "NaN", 1)
     text = text.replace(str(chord[7]), "Infinity", 1).replace(str(chord[9]), "1e999", 1)
     response = client.post("/solve", content=text, headers={"content-type": "application/json"})
@@ -47,20 +48,22 @@ def test_non_finite_numbers(client: httpx.Client) -> None:
 
 
 def test_non_increasing_y(client: httpx.Client) -> None:
-    y = study.wing()["y"]
+    y = study.wing_json()["y"]
     y[5], y[6] = y[6], y[5]
     assert _invalid(client, _with_wing(y=y)) == {"wing.y": "stations must be strictly increasing"}
 
 
 def test_root_not_at_zero(client: httpx.Client) -> None:
-    y = [v + 0.1 for v in study.wing()["y"]]
+    y = [v + 0.1 for v in study.wing_json()["y"]]
     fields = _invalid(client, _with_wing(y=y))
     assert list(fields) == ["wing.y"]
     assert "y[0] = 0" in fields["wing.y"]
 
 
 def test_mismatched_lengths(client: httpx.Client) -> None:
-    fields = _invalid(client, _with_wing(bending_stiffness=study.wing()["bending_stiffness"][:-1]))
+    fields = _invalid(
+        client, _with_wing(bending_stiffness=study.wing_json()["bending_stiffness"][:-1])
+    )
     assert fields == {"wing.bending_stiffness": "has 29 values but y has 30 stations"}
 
 
@@ -70,7 +73,7 @@ def test_mismatched_elastic_axis_list(client: httpx.Client) -> None:
 
 
 def test_non_positive_chord_and_stiffness(client: httpx.Client) -> None:
-    w = study.wing()
+    w = study.wing_json()
     chord, gj = w["chord"], w["torsional_stiffness"]
     chord[0], gj[4], gj[5] = 0.0, -1.0, 0.0
     fields = _invalid(client, _with_wing(chord=chord, torsional_stiffness=gj))
@@ -79,11 +82,66 @@ def test_non_positive_chord_and_stiffness(client: httpx.Client) -> None:
         "wing.torsional_stiffness[4]",
         "wing.torsional_stiffness[5]",
     }
-    assert all("greater than 0" in reason for reason in fields.values())
+    minimum = {"wing.chord[0]": "0.001"} | dict.fromkeys(
+        ("wing.torsional_stiffness[4]", "wing.torsional_stiffness[5]"), "0.001"
+    )
+    for field, reason in fields.items():
+        assert f"greater than or equal to {minimum[field]}" in reason, (field, reason)
+
+
+@pytest.mark.parametrize(
+    ("flight", "field"),
+    [
+        pytest.param({"density": 5e-324}, "flight.density", id="denormal-density"),
+        pytest.param({"density": 2001.0}, "flight.density", id="denser-than-water"),
+        pytest.param({"velocity": 1000.5}, "flight.velocity", id="past-1000-mps"),
+        pytest.param({"velocity": 5e-324}, "flight.velocity", id="denormal-velocity"),
+        pytest.param({"alpha": 30.5}, "flight.alpha", id="alpha-past-30-deg"),
+    ],
+)
+def test_a_number_outside_the_published_limits_is_invalid_input(
+    client: httpx.Client, flight: dict, field: str
+) -> None:
+    """Found by schema fuzzing with another seed: density 5e-324 got HTTP 500 (ZeroDivisionError).
+    The limits are in the OpenAPI document (minimum, maximum) and enforced before any solve."""
+    body = study.solve_request(10.0)
+    body["flight"] |= flight
+    fields = _invalid(client, body)
+    assert list(fields) == [field]
+
+
+def test_a_sweep_of_denormal_airspeeds_is_invalid_input(client: httpx.Client) -> None:
+    """Found by schema fuzzing with another seed: velocities {start: 5e-324, stop: 5e-324,
+    count: 2} got HTTP 500."""
+    body = {
+        "wing": study.wing_json(),
+        "flight": {"alpha": 5.0},
+        "velocities": {"start": 5e-324, "stop": 5e-324, "count": 2},
+    }
+    assert set(_invalid(client, body, "/sweep")) == {"velocities.start", "velocities.stop"}
+
+
+def test_stiffness_beyond_the_published_limit_is_invalid_input(client: httpx.Client) -> None:
+    assert list(_invalid(client, _with_wing(bending_stiffness=1e13))) == ["wing.bending_stiffness"]
+
+
+def test_stations_closer_than_the_limit_are_invalid_input(client: httpx.Client) -> None:
+    y = study.wing_json()["y"]
+    y[1] = 1e-5
+    fields = _invalid(client, _with_wing(y=y))
+    assert list(fields) == ["wing.y"] and "0.0001 of the semispan" in fields["wing.y"]
+
+
+def test_evenly_spaced_stations_from_the_semispan(client: httpx.Client) -> None:
+    body = study.solve_request(10.0)
+    body["wing"]["y"] = {"semispan": 5.0, "stations": 30}
+    response = client.post("/solve", json=body)
+    assert response.status_code == 200
+    assert response.json()["totals"]["lift"] == pytest.approx(304.13, abs=0.01)
 
 
 def test_too_few_and_too_many_stations(client: httpx.Client) -> None:
-    few = {k: (v[:2] if isinstance(v, list) else v) for k, v in study.wing().items()}
+    few = {k: (v[:2] if isinstance(v, list) else v) for k, v in study.wing_json().items()}
     fields = _invalid(client, _with_wing(**few))
     assert set(fields) == {
         "wing.y",
@@ -112,7 +170,7 @@ def test_bad_flight_condition(client: httpx.Client) -> None:
 
 
 def test_too_many_velocities(client: httpx.Client) -> None:
-    body = {"wing": study.wing(), "flight": {"alpha": 5}, "velocities": [10.0] * 51}
+    body = {"wing": study.wing_json(), "flight": {"alpha": 5}, "velocities": [10.0] * 51}
     fields = _invalid(client, body, "/sweep")
     assert list(fields) == ["velocities"]
     assert "1 to 50" in fields["velocities"]

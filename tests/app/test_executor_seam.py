@@ -9,7 +9,7 @@ import pytest
 
 from app.main import create_app
 from app.settings import Settings
-from tests.app import study
+from tests import study
 
 
 async def _solve_in_process(settings: Settings) -> tuple[dict, httpx.Response]:

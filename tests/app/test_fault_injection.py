@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 
 import solver
-from tests.app import study
+from tests import study
 from tests.app.conftest import Server
 
 WARM_VS_COLD = 1e-8  # relative, on totals
@@ -41,7 +41,7 @@ DENSITY = 1.225
 
 def wing_json(n: int = 120) -> dict[str, Any]:
     """The study's wing on n stations (slower to solve than its 30)."""
-    return study.wing(n=n)
+    return study.wing_json(n=n)
 
 
 def solve_body(velocity: float, n: int = 120, **extra: Any) -> dict[str, Any]:

@@ -14,14 +14,14 @@ from typing import Any
 import httpx
 import pytest
 
-from tests.app import study
+from tests import study
 from tests.app.conftest import Server
 
 
 def _big_wing(n: int = 150) -> dict[str, Any]:
     """The study's wing on 150 stations: ~0.3 s to build its model and ~0.6 s per solve on the
     virtual machine, against ~20 ms for 30 stations."""
-    return study.wing(n=n)
+    return study.wing_json(n=n)
 
 
 def _post_big(server: Server, velocity: float) -> httpx.Response:

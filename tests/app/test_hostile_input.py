@@ -19,7 +19,7 @@ import httpx
 import pytest
 
 from app.problems import MAX_LISTED_ERRORS
-from tests.app import study
+from tests import study
 from tests.app.conftest import Server
 from tests.app.hostile import (
     AMPLIFIER,
@@ -168,7 +168,7 @@ def test_solving_many_mesh_sizes_does_not_grow_the_workers_without_bound(
     for block in range(3):
         before = _worker_memory(hostile_server)
         for n in range(95 - 12 * block, 83 - 12 * block, -1):
-            body = {"wing": study.wing(n=n), "flight": {"velocity": 10.0, "alpha": 5.0}}
+            body = {"wing": study.wing_json(n=n), "flight": {"velocity": 10.0, "alpha": 5.0}}
             response = httpx.post(hostile_server.base_url + "/solve", json=body, timeout=HANG_GUARD)
             assert response.status_code == 200, response.text
         growth.append(_worker_memory(hostile_server) - before)

@@ -19,7 +19,7 @@ from typing import Any
 import httpx
 import pytest
 
-from tests.app import study
+from tests import study
 from tests.app.conftest import Server
 
 FINISHED = {"succeeded", "failed", "cancelled"}
@@ -33,7 +33,7 @@ def slow_item(index: int, velocity: float = 10.0) -> dict[str, Any]:
     """A /solve body of a 60-station wing whose stiffness differs by item (no warm start from
     another item): ~0.2 s per solve on the virtual machine."""
     return {
-        "wing": study.wing(stiffness_scale=1.0 + 0.01 * index, n=60),
+        "wing": study.wing_json(stiffness_scale=1.0 + 0.01 * index, n=60),
         "flight": {"velocity": velocity, "alpha": 5.0},
     }
 
@@ -155,7 +155,7 @@ def test_job_ids_are_unguessable(client: httpx.Client) -> None:
 
 
 def test_a_sweep_with_prefer_respond_async_becomes_a_job(client: httpx.Client) -> None:
-    body = {"wing": study.wing(), "flight": {"alpha": 5.0}, "velocities": [6.0, 10.0, 22.0]}
+    body = {"wing": study.wing_json(), "flight": {"alpha": 5.0}, "velocities": [6.0, 10.0, 22.0]}
     response = client.post("/sweep", json=body, headers={"Prefer": "respond-async, wait=10"})
     assert response.status_code == 202, response.text
     assert response.headers["preference-applied"] == "respond-async"
@@ -205,7 +205,10 @@ def test_a_batch_item_that_is_not_a_solve_request_is_a_422_naming_it(
         ({"operation": "batch", "request": [study.solve_request(10.0)]}, ["request"]),
         ({"operation": "solve", "request": study.solve_request(10.0) | {"x": 1}}, ["request.x"]),
         (
-            {"operation": "sweep", "request": {"wing": study.wing(), "flight": {"alpha": 5.0}}},
+            {
+                "operation": "sweep",
+                "request": {"wing": study.wing_json(), "flight": {"alpha": 5.0}},
+            },
             ["request.velocities"],
         ),
     ],
@@ -449,8 +452,7 @@ def test_a_new_operation_is_one_registry_entry() -> None:
     (here one that takes a /solve body), one that is not there is an error on `operation`."""
     from pydantic import TypeAdapter, ValidationError
 
-    from app.jobs.models import submission_type
-    from app.jobs.operations import OPERATIONS, Operation
+    from app.jobs.operations import OPERATIONS, Operation, submission_type
     from app.schemas import SolveRequest
 
     async def run(context: Any, request: SolveRequest) -> str:

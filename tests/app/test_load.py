@@ -20,7 +20,7 @@ from types import ModuleType
 
 import pytest
 
-from tests.app import study
+from tests import study
 from tests.app.conftest import ROOT, Server
 
 

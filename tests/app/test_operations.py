@@ -13,7 +13,7 @@ import pytest
 
 from openapi.generate import PATH as OPENAPI_PATH
 from openapi.generate import render
-from tests.app import study
+from tests import study
 from tests.app.conftest import ROOT, Server
 
 
@@ -112,7 +112,7 @@ def test_generated_client_solves_and_sweeps(generated_client: object, server: Se
     assert result.totals.tip_twist == pytest.approx(1.71, abs=0.005)
 
     request = SweepRequest.from_dict(
-        {"wing": study.wing(), "flight": {"alpha": 5.0}, "velocities": [6, 22]}
+        {"wing": study.wing_json(), "flight": {"alpha": 5.0}, "velocities": [6, 22]}
     )
     swept = sweep.sync(client=client, body=request)
     assert isinstance(swept, SweepResponse)

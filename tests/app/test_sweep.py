@@ -5,11 +5,11 @@ from __future__ import annotations
 import httpx
 import pytest
 
-from tests.app import study
+from tests import study
 
 
 def _sweep(client: httpx.Client, velocities: object, **extra: object) -> dict:
-    body = {"wing": study.wing(), "flight": {"alpha": 5.0, "density": study.DENSITY}}
+    body = {"wing": study.wing_json(), "flight": {"alpha": 5.0, "density": study.DENSITY}}
     response = client.post("/sweep", json=body | {"velocities": velocities} | extra)
     assert response.status_code == 200, response.text
     return response.json()
@@ -66,11 +66,12 @@ def test_velocity_range_and_cache(client: httpx.Client) -> None:
     assert again["points"] == first["points"]
 
 
-def test_sweep_seeds_warm_starts_for_solve(client: httpx.Client) -> None:
-    wing = study.wing(stiffness_scale=1 - 4e-11)
+def test_a_sweep_point_is_the_equilibrium_a_solve_gives(client: httpx.Client) -> None:
+    wing = study.wing_json(stiffness_scale=1 - 4e-11)
     flight = {"alpha": 5.0, "density": study.DENSITY}
     response = client.post("/sweep", json={"wing": wing, "flight": flight, "velocities": [8, 16]})
     assert response.status_code == 200
-    solved = client.post("/solve", json={"wing": wing, "flight": flight | {"velocity": 16.5}})
+    point = response.json()["points"][1]["equilibrium"]
+    solved = client.post("/solve", json={"wing": wing, "flight": flight | {"velocity": 16}})
     assert solved.status_code == 200
-    assert solved.json()["solver"]["warm_start"] is True
+    assert solved.json()["totals"]["lift"] == pytest.approx(point["totals"]["lift"], rel=1e-9)

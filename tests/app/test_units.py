@@ -1,64 +1,46 @@
-"""The service's pieces without a server: caches, fingerprints, error paths."""
+"""The service's pieces without a server: the result cache, error paths, packaging."""
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
-from app.cache import ResultCache, StateCache, fingerprint
+from app.cache import ResultCache, estimated_bytes
 from app.problems import validation_errors
-from solver import Wing
-from tests.app import study
+from tests import study
 
 
-def _wing(**changes: object) -> Wing:
-    raw = study.wing() | changes
-    return Wing.create(
-        raw["y"],
-        raw["chord"],
-        raw["elastic_axis"],
-        raw["bending_stiffness"],
-        raw["torsional_stiffness"],
+def _payload(n: int) -> dict[str, object]:
+    return {"stations": {"y": [float(i) for i in range(n)]}, "totals": {"lift": 1.0}}
+
+
+def test_the_result_cache_is_an_lru_bounded_in_bytes() -> None:
+    size = estimated_bytes(_payload(100))
+    cache: ResultCache[dict[str, object]] = ResultCache(max_bytes=2 * size + size // 2)
+    cache.put("a", _payload(100))
+    cache.put("b", _payload(100))
+    assert cache.get("a") is not None  # a is now the most recent
+    cache.put("c", _payload(100))
+    assert (cache.get("a") is not None, cache.get("b"), cache.get("c") is not None) == (
+        True,
+        None,
+        True,
     )
+    assert cache.bytes <= cache.max_bytes
 
 
-def test_fingerprint_is_canonical() -> None:
-    assert fingerprint(_wing()) == fingerprint(_wing(elastic_axis=[0.4] * 30))
-    assert fingerprint(_wing()) == fingerprint(_wing(y=[-0.0, *study.wing()["y"][1:]]))
-    assert fingerprint(_wing()) != fingerprint(_wing(elastic_axis=0.41))
-    stiffer = study.wing(stiffness_scale=1 + 1e-15)
-    assert fingerprint(_wing()) != fingerprint(_wing(**stiffer))
-
-
-def test_result_cache_is_a_bounded_lru() -> None:
-    cache: ResultCache[int] = ResultCache(2)
-    cache.put("a", 1)
-    cache.put("b", 2)
-    assert cache.get("a") == 1  # a is now the most recent
-    cache.put("c", 3)
-    assert (cache.get("a"), cache.get("b"), cache.get("c")) == (1, None, 3)
-    disabled: ResultCache[int] = ResultCache(0)
-    disabled.put("a", 1)
+def test_an_entry_larger_than_the_budget_is_not_kept() -> None:
+    cache: ResultCache[dict[str, object]] = ResultCache(max_bytes=estimated_bytes(_payload(10)))
+    cache.put("big", _payload(1000))
+    assert cache.get("big") is None and cache.bytes == 0
+    disabled: ResultCache[dict[str, object]] = ResultCache(0)
+    disabled.put("a", _payload(1))
     assert disabled.get("a") is None
 
 
-def test_state_cache_returns_the_nearest_state_of_the_same_wing() -> None:
-    cache = StateCache(wings=2, per_wing=3)
-    for q in (50.0, 100.0, 200.0):
-        cache.add("w", q, 5.0, np.full(3, q))
-    found = cache.nearest("w", 120.0, 5.0)
-    assert found is not None and found.dynamic_pressure == 100.0
-    cache.add("w", 120.0, 7.0, np.zeros(3))  # evicts the least recent, 50 Pa
-    found = cache.nearest("w", 125.0, 7.0)
-    assert found is not None and (found.dynamic_pressure, found.alpha) == (120.0, 7.0)
-    # One degree of alpha weighs like doubling q: at 5 deg, 100 Pa beats 120 Pa at 7 deg.
-    found = cache.nearest("w", 125.0, 5.0)
-    assert found is not None and (found.dynamic_pressure, found.alpha) == (100.0, 5.0)
-    assert cache.nearest("other", 100.0, 5.0) is None
-    cache.add("x", 1.0, 0.0, np.zeros(3))
-    cache.add("y", 1.0, 0.0, np.zeros(3))  # evicts the least recently used wing: "w"
-    assert cache.nearest("w", 100.0, 5.0) is None
-    assert len(cache) == 2
+def test_the_byte_estimate_grows_with_the_content() -> None:
+    """About 32 bytes per float in a list (the float object and its slot)."""
+    small, large = estimated_bytes(_payload(100)), estimated_bytes(_payload(1100))
+    assert 31_000 < large - small < 33_000
 
 
 @pytest.mark.parametrize(

@@ -24,6 +24,13 @@ of ours with any Python that has AeroSandbox 4.2.10:
                     force torque turns the tip twist back (3.4 deg at 18 m/s, 0.2 deg at 25 m/s).
   coarse_rect       N = 5 (three interior stations), rectangular, elastic axis at mid-chord,
                     alpha 3 deg, 6-12 m/s (up to a lift amplification of 2).
+
+  Extended-model references (issues 10-12; ``"format": "extended-1"`` or ``"design-1"``, see
+  generate_reference.py and CONVENTIONS.md) live in the same folder but are NOT returned by
+  `own_references()`, which keeps returning only the study's formulation: use
+  `extended_references()`. They are swept_aft, swept_forward, swept_aft_deformed_axis,
+  jig_twisted, deformed_axis, k4_symmetric, k4_cambered, k4_dae11_trim, trim_study, trim_swept,
+  combined (format extended-1) and design_study (design-1).
 """
 
 from __future__ import annotations
@@ -43,6 +50,7 @@ __all__ = [
     "OWN_DATA_DIR",
     "Reference",
     "load_reference",
+    "extended_references",
     "own_references",
     "reference_param",
     "shared_reference_dir",
@@ -119,9 +127,18 @@ def load_reference(path: Path) -> Reference:
     return Reference(name=data["case"]["name"], path=Path(path), data=data)
 
 
-def own_references() -> list[Reference]:
-    """The wings committed in data/, sorted by name."""
+def _all_own_references() -> list[Reference]:
     return [load_reference(path) for path in sorted(OWN_DATA_DIR.glob("ref_*.json"))]
+
+
+def own_references() -> list[Reference]:
+    """The study-formulation wings committed in data/ (no "format" key), sorted by name."""
+    return [reference for reference in _all_own_references() if "format" not in reference.data]
+
+
+def extended_references() -> list[Reference]:
+    """The extended-model ("extended-1") and design ("design-1") references in data/, by name."""
+    return [reference for reference in _all_own_references() if "format" in reference.data]
 
 
 def reference_param(name: str):

@@ -1,29 +1,33 @@
-"""The per-mesh model: virtual machine at once, compiled C code once built, kept on disk."""
+"""solver.compiled: virtual machine at once, compiled C code once built, kept on disk, and both
+bit-identical."""
 
 from __future__ import annotations
 
+import fcntl
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from solver import compiled
+from solver import Layout, compiled
+from solver.cache import clear_caches, model_for
 
 # A small mesh keeps the C compile to a couple of seconds.
 N_SMALL = 5
 
 
 @pytest.fixture
-def private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """An empty library cache and an empty in-process model table."""
+def private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    """An empty library cache and an empty solver cache."""
     monkeypatch.setenv("FLEXWING_CACHE_DIR", str(tmp_path))
     monkeypatch.setenv("FLEXWING_COMPILE", "1")
-    monkeypatch.setattr(compiled, "_models", {})
-    monkeypatch.setattr(compiled, "_compile_threads", {})
-    return tmp_path
+    clear_caches()
+    yield tmp_path
+    clear_caches()
 
 
 def _parameters(n: int) -> np.ndarray:
@@ -37,12 +41,12 @@ def _random_state(n: int) -> np.ndarray:
 
 
 def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cache: Path) -> None:
-    model = compiled.model_for(N_SMALL)
+    model = model_for(Layout(N_SMALL))
     # No library yet: the model must answer now, from CasADi's virtual machine.
     assert not model.compiled
     evaluation = model.evaluate(_random_state(N_SMALL), _parameters(N_SMALL))
     assert np.all(np.isfinite(evaluation.jacobian0))
-    model = compiled.compile_now(N_SMALL, timeout=120)
+    model.wait_compiled(timeout=120)
     assert model.compiled
     libraries = list(private_cache.glob("*.so"))
     assert len(libraries) == 1
@@ -51,18 +55,21 @@ def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cach
     assert f"n{N_SMALL}-" in name
     assert f"model{compiled.MODEL_VERSION}-" in name
     assert "casadi" in name
+    assert "ffp_contract=off" in name
 
 
-def test_compiled_code_and_virtual_machine_agree(private_cache: Path) -> None:
+def test_compiled_code_and_virtual_machine_are_bit_identical(private_cache: Path) -> None:
+    """Same operations in the same order, no multiply-add contraction: the same bits, so an
+    answer never depends on whether the library had been compiled yet."""
     x, p = _random_state(N_SMALL), _parameters(N_SMALL)
-    vm = compiled.model_for(N_SMALL)
-    on_vm = vm.evaluate(x, p)
-    residual_vm = vm.residual(x, p)
-    loads_vm = vm.panel_loads(x, p)
-    model = compiled.compile_now(N_SMALL, timeout=120)
+    model = model_for(Layout(N_SMALL))
+    assert not model.compiled
+    on_vm = model.evaluate(x, p)
+    residual_vm = model.residual(x, p)
+    loads_vm = model.panel_loads(x, p)
+    model.wait_compiled(timeout=120)
     assert model.compiled
     on_c = model.evaluate(x, p)
-    # Same expression graph, same operation order: only compiler reassociation-free rounding.
     for a, b in [
         (on_vm.r0, on_c.r0),
         (on_vm.r1, on_c.r1),
@@ -71,13 +78,14 @@ def test_compiled_code_and_virtual_machine_agree(private_cache: Path) -> None:
         *zip(residual_vm, model.residual(x, p), strict=True),
         *zip(loads_vm, model.panel_loads(x, p), strict=True),
     ]:
-        np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-14)
+        np.testing.assert_array_equal(b, a)
 
 
 def test_a_new_process_loads_the_library_from_disk(private_cache: Path) -> None:
-    compiled.compile_now(N_SMALL, timeout=120)
+    model_for(Layout(N_SMALL)).wait_compiled(timeout=120)
     probe = (
-        f"from solver import compiled; model = compiled.model_for({N_SMALL}); print(model.compiled)"
+        f"from solver import Layout; from solver.cache import model_for; "
+        f"print(model_for(Layout({N_SMALL})).compiled)"
     )
     result = subprocess.run(
         [sys.executable, "-c", probe], capture_output=True, text=True, check=True
@@ -89,14 +97,18 @@ def test_compilation_can_be_switched_off(
     private_cache: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setenv("FLEXWING_COMPILE", "0")
-    model = compiled.compile_now(N_SMALL, timeout=5)
+    model = model_for(Layout(N_SMALL))
+    model.wait_compiled(timeout=5)
     assert not model.compiled
     assert not list(private_cache.glob("*.so"))
 
 
 def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache: Path) -> None:
     # The first use starts the compile in the background; the process then exits at once.
-    probe = f"from solver import compiled; print(compiled.model_for({N_SMALL}).compiled)"
+    probe = (
+        f"from solver import Layout; from solver.cache import model_for; "
+        f"print(model_for(Layout({N_SMALL})).compiled)"
+    )
     result = subprocess.run(
         [sys.executable, "-c", probe], capture_output=True, text=True, check=True
     )
@@ -111,14 +123,21 @@ def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache
     assert not list(private_cache.glob("build-*"))
 
 
-def test_a_process_keeps_a_bounded_number_of_mesh_sizes(
-    private_cache: Path, monkeypatch: pytest.MonkeyPatch
+def test_a_process_that_lost_the_compile_lock_loads_the_winners_library(
+    private_cache: Path,
 ) -> None:
-    monkeypatch.setenv("FLEXWING_COMPILE", "0")
-    monkeypatch.setenv("FLEXWING_MODEL_CACHE_SIZE", "2")
-    first = compiled.model_for(4)
-    compiled.model_for(5)
-    assert compiled.model_for(4) is first  # a hit makes N = 4 the most recently used
-    compiled.model_for(6)  # evicts N = 5, the least recently used
-    assert sorted(compiled._models) == [4, 6]
-    assert compiled.model_for(4) is first
+    """Another process compiles (it holds the lock): this one stays on the virtual machine
+    meanwhile, and swaps the library in once it exists."""
+    layout = Layout(N_SMALL)
+    library = compiled._library_path(layout)
+    library.parent.mkdir(parents=True, exist_ok=True)
+    with open(library.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # the "other process"
+        model = model_for(layout)
+        deadline = time.monotonic() + 30
+        while model.compiling and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not model.compiled and not model.compiling  # gave up: someone else compiles
+        fcntl.flock(lock, fcntl.LOCK_UN)
+    compiled._compile_library(layout, None, wait=True)  # the winner finishes
+    assert model_for(layout).compiled

@@ -1,13 +1,13 @@
-"""Solver fuzzing (issue 5, part 2): random but valid wings, speeds below and beyond divergence.
+"""Solver fuzzing: random but valid wings, speeds below and beyond divergence.
 
 Every generated case must end in one of the solver's documented outcomes:
 
 - an `Equilibrium`: every reported number finite, the residual within the tolerance, the root
-  clamped, at most two Newton runs of `max_iterations` steps (the caller's start, then the
-  branch's), and the stability flag consistent with the margin (stable exactly when q is below
-  the local divergence pressure);
-- a `NoEquilibrium` naming a fold below the requested speed (or no fold at all);
-- a `ConvergenceError` after at most `max_iterations` Newton steps.
+  clamped, statically stable and on the branch from the jig, the stability flag consistent with
+  the margin (stable exactly when q is below the local divergence pressure);
+- a `NoEquilibrium` naming a fold below the requested speed (or no fold: the branch's
+  equilibrium is unstable there);
+- a `ConvergenceError` (the branch could not be followed to the requested speed).
 
 Anything else escaping the solver (ValueError, IndexError, ...) is a defect, and so is a call
 that does not return within `HANG_SECONDS` (a generous guard against true hangs, not a timing
@@ -49,13 +49,14 @@ from solver import (
 )
 from tests.conftest import fuzz_examples
 from tests.strategies import alphas, densities, ratios, speed_for, wings
+from tests.study import study_wing
 
 HANG_SECONDS = 30.0
 OPTIONS = SolverOptions()
 # Reported arrays over stations and panels, and scalars, that must be finite.
 STATION_FIELDS = ("heave", "slope", "twist", "shear", "bending_moment", "torque")
-PANEL_FIELDS = ("panel_y", "panel_lift", "panel_lift_per_span", "panel_torque")
-SCALAR_FIELDS = (
+PANEL_FIELDS = ("y", "lift", "lift_per_span", "torque")
+TOTAL_FIELDS = (
     "lift",
     "induced_drag",
     "CL",
@@ -63,7 +64,6 @@ SCALAR_FIELDS = (
     "reference_area",
     "deformed_area",
     "rigid_lift",
-    "residual_norm",
 )
 
 T = TypeVar("T")
@@ -114,29 +114,30 @@ def outcome(call: Callable[[], T]) -> T | SolverError:
         ) from error
 
 
-def check_equilibrium(eq: Equilibrium, flight: FlightCondition, hinted: bool = False) -> None:
+def check_equilibrium(eq: Equilibrium, flight: FlightCondition) -> None:
     n = eq.wing.n_stations
     for name in STATION_FIELDS:
-        values = getattr(eq, name)
+        values = getattr(eq.stations, name)
         assert values.shape == (n,), name
         assert np.all(np.isfinite(values)), f"{name} has non-finite values: {values}"
     for name in PANEL_FIELDS:
-        values = getattr(eq, name)
+        values = getattr(eq.panels, name)
         assert values.shape == (n - 1,), name
         assert np.all(np.isfinite(values)), f"{name} has non-finite values: {values}"
-    for name in SCALAR_FIELDS:
-        assert math.isfinite(getattr(eq, name)), f"{name} = {getattr(eq, name)}"
-    if eq.rigid_lift != 0:
-        assert math.isfinite(eq.lift_amplification)
+    for name in TOTAL_FIELDS:
+        assert math.isfinite(getattr(eq.totals, name)), f"{name} = {getattr(eq.totals, name)}"
+    amplification = eq.totals.lift_amplification
+    assert amplification is None or math.isfinite(amplification)
+    assert math.isfinite(eq.solver.residual_norm)
     assert eq.flight == flight
-    # Newton from the hint if any, from the caller's start, then at most once more from the
-    # branch (solver.recovery): the reported count covers every attempt.
-    assert eq.iterations <= (3 if hinted else 2) * OPTIONS.max_iterations
-    assert eq.residual_norm <= OPTIONS.tolerance
+    assert eq.solver.residual_norm <= OPTIONS.tolerance
     # The root clamps are residual rows: they hold to the tolerance.
-    assert abs(eq.heave[0]) <= OPTIONS.tolerance
-    assert abs(eq.slope[0]) <= OPTIONS.tolerance
-    assert abs(eq.twist[0]) <= OPTIONS.tolerance
+    s = eq.stations
+    assert abs(s.heave[0]) <= OPTIONS.tolerance
+    assert abs(s.slope[0]) <= OPTIONS.tolerance
+    assert abs(s.twist[0]) <= OPTIONS.tolerance
+    # Every answer without an initial guess is the jig branch's, and stable.
+    assert eq.stability.branch == "jig" and eq.stability.stable
     check_stability(eq)
 
 
@@ -160,24 +161,23 @@ def check_stability(eq: Equilibrium) -> None:
         assert s.divergence_velocity is not None and math.isfinite(s.divergence_velocity)
 
 
-def check_error(error: SolverError, velocity: float, hinted: bool = False) -> None:
+def check_error(error: SolverError, velocity: float) -> None:
     assert isinstance(error, NoEquilibrium | ConvergenceError), type(error)
+    assert error.velocity == velocity
     if isinstance(error, NoEquilibrium):
-        assert error.velocity == velocity
         fold = error.fold_velocity
         # Beyond the fold: below the requested speed, or equal to it within round-off (a
         # request exactly at a bifurcation, alpha = 0 and V = the linear divergence speed).
         assert fold is None or (math.isfinite(fold) and 0 < fold <= velocity * (1 + 1e-12)), fold
     else:
-        assert error.iterations <= (2 if hinted else 1) * OPTIONS.max_iterations
-        assert error.velocity == velocity
+        assert error.reason
 
 
-def check(result: Equilibrium | SolverError, flight: FlightCondition, hinted: bool = False) -> None:
+def check(result: Equilibrium | SolverError, flight: FlightCondition) -> None:
     if isinstance(result, Equilibrium):
-        check_equilibrium(result, flight, hinted)
+        check_equilibrium(result, flight)
     else:
-        check_error(result, flight.velocity, hinted)
+        check_error(result, flight.velocity)
 
 
 # --------------------------------------------------------------------------------- tests
@@ -191,48 +191,34 @@ def test_a_cold_solve_ends_in_a_documented_outcome(case, alpha, ratio, density):
 
 
 @settings(max_examples=fuzz_examples(40))
-@given(case=wings(), alpha=alphas, first=ratios, second=ratios)
-def test_a_solve_warm_started_from_another_speed_ends_in_a_documented_outcome(
-    case, alpha, first, second
-):
-    """The service's path: start Newton from a stored equilibrium of the same wing."""
-    density = solver.wing.ISA_SEA_LEVEL_DENSITY
-    start_flight = FlightCondition(speed_for(case.wing, first, density), alpha, density)
-    start = outcome(lambda: solver.solve(case.wing, start_flight, options=OPTIONS))
-    check(start, start_flight)
-    if not isinstance(start, Equilibrium):
-        return
-    flight = FlightCondition(speed_for(case.wing, second, density), alpha, density)
-    warm = outcome(lambda: solver.solve(case.wing, flight, start, OPTIONS))
-    check(warm, flight)
-    if isinstance(warm, Equilibrium):
-        assert warm.warm_start
-
-
-@settings(max_examples=fuzz_examples(30))
 @given(case=wings(), alpha=alphas, ratio=ratios, hint_ratio=ratios)
 def test_a_hint_never_changes_the_answer(case, alpha, ratio, hint_ratio):
-    """`solve(..., hint=)` (the service's warm start from a stored stable equilibrium) gives the
-    answer of the cold solve: the same outcome, and the same equilibrium, not another one. Two
-    roots within the residual tolerance differ by the tolerance times the problem's condition
-    number: up to ~2e-6 relative for the softest wings generated (EI = 10 N m^2 over 10 m), so
-    "the same" is 1e-4 relative here, with 1e-6 deg / 1e-9 m floors for near-rigid wings. A
-    cold ConvergenceError may become an answer."""
-    density = solver.wing.ISA_SEA_LEVEL_DENSITY
+    """`solve(..., hint=)` from another answer of the same wing gives the cold solve's answer:
+    the same outcome, and the same equilibrium. Two roots within the residual tolerance differ
+    by the tolerance times the problem's condition number: up to ~2e-6 relative for the softest
+    wings generated (EI = 10 N m^2 over 10 m), so "the same" is 1e-4 relative here, with 1e-6
+    deg / 1e-9 m floors for near-rigid wings. Only a cold ConvergenceError (the path could not be
+    followed that far) may become an answer from a closer start."""
+    density = solver.ISA_SEA_LEVEL_DENSITY
     flight = FlightCondition(speed_for(case.wing, ratio, density), alpha, density)
-    start = outcome(lambda: solver.solve(case.wing, flight.at_velocity(
-        speed_for(case.wing, hint_ratio, density))))  # fmt: skip
-    if not (isinstance(start, Equilibrium) and start.stability.stable):
+    hint = outcome(
+        lambda: solver.solve(
+            case.wing, flight.at_velocity(speed_for(case.wing, hint_ratio, density))
+        )
+    )
+    if not isinstance(hint, Equilibrium):
         return
     cold = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS))
-    hinted = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS, hint=start.state))
-    check(hinted, flight, hinted=True)
+    hinted = outcome(lambda: solver.solve(case.wing, flight, options=OPTIONS, hint=hint))
+    check(hinted, flight)
     if isinstance(cold, ConvergenceError):
         return
     assert type(hinted) is type(cold), (cold, hinted)
     if isinstance(cold, Equilibrium):
-        np.testing.assert_allclose(hinted.twist, cold.twist, rtol=1e-4, atol=1e-6)
-        np.testing.assert_allclose(hinted.heave, cold.heave, rtol=1e-4, atol=1e-9)
+        np.testing.assert_allclose(hinted.stations.twist, cold.stations.twist, rtol=1e-4, atol=1e-6)
+        np.testing.assert_allclose(hinted.stations.heave, cold.stations.heave, rtol=1e-4, atol=1e-9)
+    if isinstance(cold, NoEquilibrium):
+        assert hinted.fold_velocity == cold.fold_velocity
 
 
 @settings(max_examples=fuzz_examples(20))
@@ -242,7 +228,7 @@ def test_a_hint_never_changes_the_answer(case, alpha, ratio, hint_ratio):
     speeds=st.lists(ratios, min_size=1, max_size=6),
 )
 def test_a_sweep_answers_every_speed_in_order(case, alpha, speeds):
-    density = solver.wing.ISA_SEA_LEVEL_DENSITY
+    density = solver.ISA_SEA_LEVEL_DENSITY
     velocities = [speed_for(case.wing, ratio, density) for ratio in speeds]
     result = outcome(lambda: solver.sweep(case.wing, velocities, alpha, density, OPTIONS))
     assert not isinstance(result, SolverError), f"sweep raised {result!r}"
@@ -266,12 +252,8 @@ def test_a_sweep_answers_every_speed_in_order(case, alpha, speeds):
 
 
 # ------------------------------------------------------------------ cases found by fuzzing
-
-
-def _study_wing() -> solver.Wing:
-    n = 30
-    chord = np.sqrt(np.linspace(2, 0.02, n))
-    return solver.Wing.create(np.linspace(0, 5, n), chord, 0.4, 2e4 * chord**3, 1e3 * chord**3)
+# Each is kept where its outcome is robust to a 1e-12 relative change of its inputs; the ones on
+# hints and on stability moved to tests/solver/test_solve.py and test_stability.py.
 
 
 @pytest.mark.parametrize("velocity", [5.0, 30.0, 300.0], ids=["5mps", "30mps", "300mps"])
@@ -287,20 +269,10 @@ def test_a_soft_wing_that_never_diverges_linearly_gets_a_typed_answer(velocity):
     assert result.fold_velocity == pytest.approx(3.753, abs=1e-3)
 
 
-@pytest.mark.parametrize("alpha", [1e-9, -1e-9], ids=["plus_1e-9_deg", "minus_1e-9_deg"])
-def test_the_divergence_fit_of_a_sweep_at_a_tiny_alpha_is_finite_or_absent(alpha):
-    """Found by fuzzing before commit bec1fac: at |alpha| ~ 1e-9 the equilibria converge at the
-    unloaded jig (its residual is already below 1e-10) with lift 0 but rigid_lift != 0, so
-    1/A = inf and the fit returned slope, intercept and q_div = NaN."""
-    result = solver.sweep(_study_wing(), [6.0, 10.0], alpha, 1.225)
-    fit = result.divergence.fit
-    for value in (fit.slope, fit.intercept, fit.dynamic_pressure):
-        assert value is None or math.isfinite(value), fit
-
-
 def _never_diverging_in_practice() -> solver.Wing:
     """Found by fuzzing: N = 7, linear taper, elastic axis scattered about the quarter chord;
-    its linear divergence pressure is 1.5e18 Pa (1.76e9 m/s at 1 kg/m^3)."""
+    its divergence pressure is round-off (1.5e18 Pa, 1.76e9 m/s at 1 kg/m^3, before round-off
+    was filtered)."""
     y = np.linspace(0, 1, 7)
     chord = 1.7782794100389228 * (1 - 0.875 * y)
     elastic_axis = [0.25, 0.25, 0.125, 0.125, 0.25, 0.125, 0.5]
@@ -326,76 +298,6 @@ def test_a_cold_solve_past_divergence_at_a_tiny_alpha_is_no_equilibrium(alpha):
     linear divergence speed returned the unloaded jig flagged unstable, where alpha = 0 and
     alpha = 1e-6 got NoEquilibrium."""
     flight = FlightCondition(velocity=25.0, alpha=alpha, density=1.225)
-    result = outcome(lambda: solver.solve(_study_wing(), flight))
+    result = outcome(lambda: solver.solve(study_wing(), flight))
     check(result, flight)
     assert isinstance(result, NoEquilibrium)
-
-
-def _bistable_wing() -> solver.Wing:
-    """Found by fuzzing (simplified): uniform stations, linear taper, GJ = 1 N m^2. Past its
-    linear divergence (0.311 Pa) the branch from the jig reaches +70 deg of tip twist at
-    q = 0.519 Pa; a nose-down equilibrium (-70 deg, negative lift) is statically stable too."""
-    y = np.linspace(0, 5, 27)
-    return solver.Wing.create(y, 1.438 * (1 - 0.877 * y / 5), 0.4, 1.232e6, 1.0)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect: a hint may change the answer. At V = 1 m/s, rho = 1.038 (q = 0.519 Pa), "
-        "alpha 0.5 deg, the cold solve gives the jig branch's equilibrium (tip twist +69.93 deg, "
-        "lift +16.69 N); hinted with the stable equilibrium of the same wing at 0.8 m/s (tip "
-        "twist +33.6 deg, on that branch) Newton lands on tip twist -70.48 deg, lift -16.55 N, "
-        "also flagged stable, and solve() returns it. Through the API the service's state-cache "
-        "warm start does the same: the answer depends on which requests came before"
-    ),
-)
-def test_a_hint_from_the_jig_branch_keeps_the_cold_answer():
-    wing = _bistable_wing()
-    flight = FlightCondition(velocity=1.0, alpha=0.5, density=1.038)
-    cold = solver.solve(wing, flight)
-    start = solver.solve(wing, flight.at_velocity(0.8))
-    assert start.stability.stable
-    hinted = solver.solve(wing, flight, hint=start.state)
-    assert hinted.tip_twist == pytest.approx(cold.tip_twist, rel=1e-8)
-    assert hinted.lift == pytest.approx(cold.lift, rel=1e-8)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect: a hint turns NoEquilibrium into an answer. This wing's linear divergence "
-        "is at 5.4e8 m/s; at 1.08e9 m/s (alpha 1 deg, rho 1.225) the cold solve raises "
-        "NoEquilibrium ('only statically unstable equilibria were found'), although the branch "
-        "from the jig continues without a fold to 1.7e9 m/s; hinted with the stable equilibrium "
-        "at 5.4e8 m/s, solve() returns a stable equilibrium (tip twist -2.45 deg, lift 9902 N)"
-    ),
-)
-def test_a_hint_does_not_turn_no_equilibrium_into_an_answer():
-    y = np.linspace(0, 1, 8)
-    chord = 1.7782794100389228 * (1 - (1 - 0.25) * y)
-    wing = solver.Wing.create(y, chord, [0.25] * 4 + [0.05078125] * 4, 10.0, 1.0)
-    flight = FlightCondition(velocity=1081208826.6422322, alpha=1.0, density=1.225)
-    start = solver.solve(wing, flight.at_velocity(540604413.3211161))
-    assert start.stability.stable
-    cold = outcome(lambda: solver.solve(wing, flight))
-    hinted = outcome(lambda: solver.solve(wing, flight, hint=start.state))
-    assert type(hinted) is type(cold), (cold, hinted)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "solver defect: with the elastic axis exactly at the quarter chord (almost no aerodynamic "
-        "torque, so every divergence eigenvalue mu is 0 up to round-off) a sweep at alpha = "
-        "1e-160 deg reports local_divergence_pressure = inf (1/mu overflows; 'overflow "
-        "encountered in scalar divide' in solver/stability.py), and at alpha = 1e-100 or 1e-12 "
-        "noise values of 6e118 or 1e29 Pa, where solve() at the same point reports None"
-    ),
-)
-def test_a_wing_without_aerodynamic_torque_reports_no_infinite_divergence_pressure():
-    wing = solver.Wing.create(np.linspace(0, 10, 30), 1.0, 0.25, 10.0, 100.0)
-    point = solver.sweep(wing, [12.02264434617413], 1.3651542273090362e-160, 1.225).points[0]
-    assert point.equilibrium is not None
-    local = point.equilibrium.stability.local_divergence_pressure
-    assert local is None or math.isfinite(local), local

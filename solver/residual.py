@@ -33,16 +33,14 @@ running sums, which keeps the work at O(N^2) instead of O(N^3).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import casadi as ca
 import numpy as np
 
 from solver.geometry import panel_geometry, station_points
+from solver.layout import Layout
 from solver.vlm import induced_velocities, source_columns
 
 __all__ = [
-    "Layout",
     "build_coupled_function",
     "build_panel_loads_function",
     "build_residual_function",
@@ -53,54 +51,6 @@ __all__ = [
 MODEL_VERSION = "3"
 
 DEG_PER_RAD = 180.0 / np.pi
-
-
-@dataclass(frozen=True)
-class Layout:
-    """Index ranges of unknowns, equations and parameters for N stations."""
-
-    n: int
-
-    @property
-    def n_panels(self) -> int:
-        return self.n - 1
-
-    @property
-    def n_unknowns(self) -> int:
-        return 4 * self.n - 1
-
-    @property
-    def n_parameters(self) -> int:
-        return 5 * self.n + 1
-
-    @property
-    def heave(self) -> slice:
-        return slice(0, self.n)
-
-    @property
-    def slope(self) -> slice:
-        return slice(self.n, 2 * self.n)
-
-    @property
-    def twist(self) -> slice:
-        return slice(2 * self.n, 3 * self.n)
-
-    @property
-    def circulation(self) -> slice:
-        return slice(3 * self.n, 4 * self.n - 1)
-
-    # Equation rows
-    @property
-    def bending_rows(self) -> slice:
-        return slice(3 + self.n_panels, 3 + 2 * self.n_panels)
-
-    @property
-    def torsion_rows(self) -> slice:
-        return slice(3 + 2 * self.n_panels, 3 + 3 * self.n_panels)
-
-    @property
-    def tangency_rows(self) -> slice:
-        return slice(3 + 3 * self.n_panels, 3 + 4 * self.n_panels)
 
 
 def _split_parameters(p: ca.MX | ca.SX, n: int) -> tuple:

@@ -1,32 +1,33 @@
-"""Wing and flight-condition inputs, validated once so the numerics never see bad data.
+"""Validated, frozen inputs: the wing, the flight condition and the solver options.
 
 A wing is described on the right half-span at N structural stations; the left half is its mirror
 image. Every array has shape (N,) and SI units; angles are in degrees, as in the design study.
+Validation happens once, here, so the numerics never see bad data.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
-__all__ = ["MIN_STATIONS", "FlightCondition", "InvalidInput", "Wing", "ISA_SEA_LEVEL_DENSITY"]
+from solver.errors import InvalidInput
+
+__all__ = [
+    "ISA_SEA_LEVEL_DENSITY",
+    "MIN_SPACING",
+    "MIN_STATIONS",
+    "FlightCondition",
+    "SolverOptions",
+    "Wing",
+]
 
 MIN_STATIONS = 3
+MIN_SPACING = 1e-4  # [-] of the semispan, between consecutive stations
 ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
-
-
-class InvalidInput(ValueError):
-    """An input that cannot describe a physical wing or flight condition.
-
-    `field` names the offending input (e.g. ``"chord"``), `reason` says what is wrong with it.
-    """
-
-    def __init__(self, field: str, reason: str) -> None:
-        super().__init__(f"{field}: {reason}")
-        self.field = field
-        self.reason = reason
 
 
 def _is_number(value: object) -> bool:
@@ -37,6 +38,7 @@ def _is_number(value: object) -> bool:
 
 
 def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
+    """(n,) float array from one number or n numbers, finite, read-only."""
     if isinstance(values, np.ndarray):
         if not np.issubdtype(values.dtype, np.integer) and not np.issubdtype(
             values.dtype, np.floating
@@ -57,6 +59,7 @@ def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
         raise InvalidInput(name, f"has {array.shape[0]} values but y has {n} stations")
     if not np.all(np.isfinite(array)):
         raise InvalidInput(name, "must contain only finite numbers")
+    array.setflags(write=False)
     return array
 
 
@@ -88,7 +91,7 @@ class Wing:
         bending_stiffness: object,
         torsional_stiffness: object,
     ) -> Wing:
-        """Validate and normalise inputs; `elastic_axis` may be one number for every station."""
+        """Validate and normalise inputs; any per-station input may be one number for all."""
         y_arr = _station_array("y", y, None)
         n = y_arr.shape[0]
         if n < MIN_STATIONS:
@@ -97,6 +100,11 @@ class Wing:
             raise InvalidInput("y", "the first station must be the root, y[0] = 0")
         if not np.all(np.diff(y_arr) > 0):
             raise InvalidInput("y", "stations must be strictly increasing")
+        if np.min(np.diff(y_arr)) < MIN_SPACING * y_arr[-1]:
+            # Panels narrower than this are round-off to the lattice's geometry.
+            raise InvalidInput(
+                "y", f"stations must be at least {MIN_SPACING:g} of the semispan apart"
+            )
         chord_arr = _station_array("chord", chord, n)
         elastic_axis_arr = _station_array("elastic_axis", elastic_axis, n)
         ei = _station_array("bending_stiffness", bending_stiffness, n)
@@ -111,8 +119,6 @@ class Wing:
         if not np.all((elastic_axis_arr >= 0) & (elastic_axis_arr <= 1)):
             # A fraction of chord from the leading edge: the axis must lie on the section.
             raise InvalidInput("elastic_axis", "must lie between 0 and 1 (fraction of chord)")
-        for array in (y_arr, chord_arr, elastic_axis_arr, ei, gj):
-            array.setflags(write=False)
         return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj)
 
     @property
@@ -129,17 +135,30 @@ class Wing:
         """Jig planform area of both halves [m^2] (trapezoidal panels between stations)."""
         return float(np.sum((self.chord[1:] + self.chord[:-1]) * np.diff(self.y)))
 
-    def parameters(self, alpha_deg: float) -> np.ndarray:
-        """The numeric parameter vector of the compiled model: [y, c, x_ea, EI, GJ, alpha_deg]."""
-        return np.concatenate(
-            [
-                self.y,
-                self.chord,
-                self.elastic_axis,
-                self.bending_stiffness,
-                self.torsional_stiffness,
-                [alpha_deg],
-            ]
+    @property
+    def mean_chord(self) -> float:
+        """[m] planform area over span."""
+        return self.planform_area / (2 * self.semispan)
+
+    @cached_property
+    def key(self) -> str:
+        """A canonical identity of the wing: equal for equal numbers (-0.0 and 0.0 alike), so
+        `elastic_axis=0.4` and thirty 0.4s are one wing. Every cache, the solver's and the
+        service's, keys a wing by it."""
+        digest = hashlib.blake2b(digest_size=16)
+        for array in self.arrays():
+            # + 0.0 turns -0.0 into 0.0, so equal numbers hash equally.
+            digest.update(np.ascontiguousarray(array + 0.0, dtype=np.float64).tobytes())
+        return digest.hexdigest()
+
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """The station arrays in the order of the model's parameter vector."""
+        return (
+            self.y,
+            self.chord,
+            self.elastic_axis,
+            self.bending_stiffness,
+            self.torsional_stiffness,
         )
 
 
@@ -149,8 +168,9 @@ class FlightCondition:
 
     Attributes:
         velocity: [m/s] airspeed, > 0.
-        alpha: [deg] angle of attack of the jig shape.
+        alpha: [deg] angle of attack of the jig shape, -90 < alpha < 90.
         density: [kg/m^3] air density, > 0.
+    The dynamic pressure rho V^2 / 2 must be a positive, finite number.
     """
 
     velocity: float
@@ -170,11 +190,16 @@ class FlightCondition:
             raise InvalidInput("density", "must be positive")
         if not -90.0 < self.alpha < 90.0:
             raise InvalidInput("alpha", "must lie strictly between -90 and 90 degrees")
+        q = self.dynamic_pressure
+        if not (math.isfinite(q) and q > 0):
+            raise InvalidInput(
+                "velocity", f"the dynamic pressure rho V^2 / 2 = {q:g} Pa is not a positive number"
+            )
 
     @property
     def dynamic_pressure(self) -> float:
         """q = rho V^2 / 2 [Pa]."""
-        return 0.5 * self.density * self.velocity**2
+        return 0.5 * self.density * self.velocity * self.velocity  # inf, not OverflowError
 
     def at_velocity(self, velocity: float) -> FlightCondition:
         return FlightCondition(velocity=velocity, alpha=self.alpha, density=self.density)
@@ -183,3 +208,23 @@ class FlightCondition:
     def velocity_for(dynamic_pressure: float, density: float) -> float:
         """V = sqrt(2 q / rho) [m/s]."""
         return math.sqrt(2.0 * dynamic_pressure / density)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """How to solve.
+
+    tolerance: max-norm of the residual at convergence (units in `solver.residual`).
+    max_iterations: Newton iterations of one attempt before it is given up.
+    find_fold: also locate the fold of the branch from the jig shape (`Equilibrium.fold`).
+    """
+
+    tolerance: float = 1e-10
+    max_iterations: int = 30
+    find_fold: bool = False
+
+    def __post_init__(self) -> None:
+        if not (_is_number(self.tolerance) and 0 < self.tolerance < 1):
+            raise InvalidInput("tolerance", "must be a number between 0 and 1")
+        if not (isinstance(self.max_iterations, int) and self.max_iterations >= 0):
+            raise InvalidInput("max_iterations", "must be a non-negative integer")

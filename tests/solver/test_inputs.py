@@ -1,5 +1,5 @@
-"""Wing.create and FlightCondition accept physical inputs and reject anything else, naming the
-offending field, before any numerics run."""
+"""solver.inputs: Wing.create, FlightCondition and SolverOptions accept physical inputs and
+reject anything else, naming the offending field, before any numerics run."""
 
 from __future__ import annotations
 
@@ -49,6 +49,7 @@ def test_planform_area_of_a_trapezoidal_wing():
         pytest.param({"y": [0.5, 1.0, 2.0, 3.0, 4.0]}, "y", id="root-not-at-zero"),
         pytest.param({"y": [0.0, 1.0, 1.0, 3.0, 4.0]}, "y", id="repeated-station"),
         pytest.param({"y": [0.0, 2.0, 1.0, 3.0, 4.0]}, "y", id="decreasing-stations"),
+        pytest.param({"y": [0.0, 1e-5, 2.0, 3.0, 4.0]}, "y", id="stations-closer-than-1e-4"),
         pytest.param({"y": [[0.0, 1.0, 2.0]]}, "y", id="two-dimensional-y"),
         pytest.param({"y": [0.0, 1.0, math.nan, 3.0, 4.0]}, "y", id="nan-station"),
         pytest.param({"y": 4.0}, "y", id="scalar-y"),
@@ -105,9 +106,36 @@ def test_a_valid_flight_condition_and_its_dynamic_pressure():
         pytest.param(10.0, 5.0, 0.0, "density", id="zero-density"),
         pytest.param(10.0, 5.0, -1.2, "density", id="negative-density"),
         pytest.param(10.0, 5.0, math.inf, "density", id="infinite-density"),
+        pytest.param(10.0, 5.0, 5e-324, "velocity", id="denormal-density-no-dynamic-pressure"),
+        pytest.param(1e200, 5.0, 1.2, "velocity", id="dynamic-pressure-overflows"),
     ],
 )
 def test_an_invalid_flight_condition_names_the_field(velocity, alpha, density, field):
     with pytest.raises(InvalidInput) as raised:
         solver.FlightCondition(velocity=velocity, alpha=alpha, density=density)
+    assert raised.value.field == field
+
+
+def test_the_wing_key_is_canonical():
+    """One key per wing, whatever the spelling of equal numbers: the caches of the solver and
+    the service depend on it."""
+    key = wing_with().key
+    assert wing_with(elastic_axis=[0.35] * N).key == key
+    assert wing_with(y=[-0.0, *GOOD["y"][1:]]).key == key
+    assert wing_with(bending_stiffness=5e3).key == key
+    assert wing_with(elastic_axis=0.36).key != key
+    assert wing_with(torsional_stiffness=4.01e2).key != key
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        pytest.param({"tolerance": 0.0}, "tolerance", id="zero-tolerance"),
+        pytest.param({"tolerance": math.nan}, "tolerance", id="nan-tolerance"),
+        pytest.param({"max_iterations": -1}, "max_iterations", id="negative-iterations"),
+    ],
+)
+def test_invalid_solver_options_name_the_field(changes: dict, field: str):
+    with pytest.raises(InvalidInput) as raised:
+        solver.SolverOptions(**changes)
     assert raised.value.field == field

@@ -1,0 +1,173 @@
+// Every input of the page is described here, once: label, unit, default and where its value goes.
+// Adding a field the API gains later is one entry in one of these lists (see OPTIONAL_FIELDS).
+//
+// A descriptor has:
+//   key     a name unique on the page (the input's id is "f-" + key)
+//   path    where the value goes in a request body ("flight.velocity"); the error of that path
+//           in a 422 problem is shown next to the input. Planform fields have no path: they
+//           generate the station table, and `feeds` names the wing lists they generate.
+//   label, unit, hint   shown to the user; every input has a <label>.
+//   kind    "number" (default), "integer", "select" or "text"; `options` for a select.
+//   value   the default: the design study's wing and flight (shared/seed, chapter 14).
+
+export const PLANFORM_FIELDS = [
+  { key: "span", label: "Span, tip to tip", unit: "m", value: 10, feeds: ["y"] },
+  { key: "n", label: "Stations N (half-wing)", unit: "-", kind: "integer", value: 30, feeds: ["y"] },
+  { key: "root_chord", label: "Root chord", unit: "m", value: 1.414213562, feeds: ["chord"] },
+  { key: "tip_chord", label: "Tip chord", unit: "m", value: 0.1414213562, feeds: ["chord"] },
+  {
+    key: "taper",
+    label: "Taper law",
+    kind: "select",
+    value: "sqrt",
+    options: [
+      ["sqrt", "study's: c = sqrt(linspace(c_root^2, c_tip^2, N))"],
+      ["linear", "linear: c = linspace(c_root, c_tip, N)"],
+    ],
+    feeds: ["chord"],
+  },
+  {
+    key: "elastic_axis",
+    label: "Elastic axis",
+    unit: "fraction of chord from the LE",
+    value: 0.4,
+    feeds: ["elastic_axis"],
+  },
+  {
+    key: "ei_law",
+    label: "Bending stiffness law",
+    kind: "select",
+    value: "cubic",
+    options: [
+      ["cubic", "EI = k c^3"],
+      ["constant", "EI = k"],
+    ],
+    feeds: ["bending_stiffness"],
+  },
+  { key: "ei_k", label: "EI coefficient k", unit: "N m^2 (per m^3 of c^3)", value: 2e4, feeds: ["bending_stiffness"] },
+  {
+    key: "gj_law",
+    label: "Torsional stiffness law",
+    kind: "select",
+    value: "cubic",
+    options: [
+      ["cubic", "GJ = k c^3"],
+      ["constant", "GJ = k"],
+    ],
+    feeds: ["torsional_stiffness"],
+  },
+  { key: "gj_k", label: "GJ coefficient k", unit: "N m^2 (per m^3 of c^3)", value: 1e3, feeds: ["torsional_stiffness"] },
+];
+
+// Columns of the station table: one list of N values each in `wing`.
+export const STATION_COLUMNS = [
+  { key: "y", label: "y", unit: "m" },
+  { key: "chord", label: "chord", unit: "m" },
+  { key: "elastic_axis", label: "elastic axis", unit: "x/c", scalarWhenUniform: true },
+  { key: "bending_stiffness", label: "EI", unit: "N m^2" },
+  { key: "torsional_stiffness", label: "GJ", unit: "N m^2" },
+];
+
+export const FLIGHT_FIELDS = [
+  { key: "velocity", path: "flight.velocity", label: "Airspeed", unit: "m/s", value: 10, solveOnly: true },
+  { key: "alpha", path: "flight.alpha", label: "Angle of attack", unit: "deg", value: 5 },
+  { key: "density", path: "flight.density", label: "Air density", unit: "kg/m^3", value: 1.225 },
+];
+
+export const SWEEP_FIELDS = [
+  { key: "sweep_start", path: "velocities.start", label: "From", unit: "m/s", value: 4 },
+  { key: "sweep_stop", path: "velocities.stop", label: "To", unit: "m/s", value: 22 },
+  { key: "sweep_count", path: "velocities.count", label: "Airspeeds", unit: "-", kind: "integer", value: 10 },
+];
+
+// Fields later API versions may add. Each is shown only when the running server's OpenAPI
+// document (/openapi.json) has `property` in components.schemas[`schema`]; its description
+// there becomes the hint. A "column" field adds a column to the station table instead. A group
+// (e.g. a tube spar) is one entry per member with a nested path, e.g. { schema: "TubeSpar",
+// property: "outer_diameter", path: "wing.spar.outer_diameter", ... }: setPath builds the object.
+export const OPTIONAL_FIELDS = [
+  { key: "sweep_angle", schema: "Wing", property: "sweep", path: "wing.sweep", label: "Sweep", unit: "deg", value: 0 },
+  { key: "airfoil", schema: "Wing", property: "airfoil", path: "wing.airfoil", label: "Airfoil", kind: "text", value: "" },
+  { key: "jig_twist", schema: "Wing", property: "jig_twist", path: "wing.jig_twist", label: "jig twist", unit: "deg", kind: "column", value: 0 },
+  { key: "weight", schema: "Flight", property: "weight", path: "flight.weight", label: "Weight (trim)", unit: "N", value: "" },
+  { key: "load_factor", schema: "Flight", property: "load_factor", path: "flight.load_factor", label: "Load factor", unit: "-", value: 1 },
+];
+
+let uid = 0;
+
+/** A labelled input (or select) for `field`, appended to `parent`; returns the control. */
+export function renderField(field, parent, { form } = {}) {
+  const id = `f-${field.key}`;
+  const wrap = document.createElement("div");
+  wrap.className = "field";
+  const label = document.createElement("label");
+  label.htmlFor = id;
+  label.textContent = field.label;
+  if (field.unit) {
+    const unit = document.createElement("span");
+    unit.className = "unit";
+    unit.textContent = ` [${field.unit}]`;
+    label.append(unit);
+  }
+  let control;
+  if (field.kind === "select") {
+    control = document.createElement("select");
+    for (const [value, text] of field.options) {
+      const option = document.createElement("option");
+      option.value = value;
+      option.textContent = text;
+      control.append(option);
+    }
+  } else {
+    control = document.createElement("input");
+    if (field.kind === "text") {
+      control.type = "text";
+    } else {
+      control.type = "number";
+      control.step = field.kind === "integer" ? "1" : "any";
+      control.inputMode = field.kind === "integer" ? "numeric" : "decimal";
+    }
+  }
+  control.id = id;
+  control.name = field.key;
+  control.value = String(field.value);
+  if (field.path) control.dataset.path = field.path;
+  if (form) control.setAttribute("form", form);
+  wrap.append(label, control);
+  if (field.hint) {
+    const hint = document.createElement("p");
+    hint.className = "hint";
+    hint.id = `${id}-hint-${uid++}`;
+    hint.textContent = field.hint;
+    control.setAttribute("aria-describedby", hint.id);
+    wrap.append(hint);
+  }
+  parent.append(wrap);
+  return control;
+}
+
+/** The value of a control as the request should carry it: a number, or null when empty or not a
+ * number (the service then names the field and says why), or the text of a text/select field. */
+export function controlValue(control, kind) {
+  if (kind === "select" || kind === "text") return control.value;
+  const text = control.value.trim();
+  if (text === "") return null;
+  const value = Number(text);
+  return Number.isFinite(value) ? value : null;
+}
+
+/** obj with `value` set at a dotted path ("flight.velocity"), creating objects on the way. */
+export function setPath(obj, path, value) {
+  const parts = path.split(".");
+  let node = obj;
+  for (const part of parts.slice(0, -1)) {
+    node[part] ??= {};
+    node = node[part];
+  }
+  node[parts.at(-1)] = value;
+  return obj;
+}
+
+export function getPath(obj, path) {
+  return path.split(".").reduce((node, part) => (node == null ? undefined : node[part]), obj);
+}

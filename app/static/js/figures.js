@@ -1,0 +1,443 @@
+// The design study's figures 14.2-14.5, drawn with Chart.js (vendored, loaded before this module
+// as window.Chart). Every figure records what it drew in `registry` (series as x/y arrays, marked
+// values), which the page exposes as window.__flexwing.figures for tests and for the curious.
+
+import { sections, wireframe } from "./geometry.js";
+
+const { Chart } = window;
+if (!Chart) throw new Error("Chart.js did not load (static/vendor/chart.js-*/chart.umd.min.js)");
+
+export const COLORS = {
+  flexible: "#1565c0",
+  rigid: "#8a8a8a",
+  moment: "#c62828",
+  torque: "#6a1b9a",
+  fold: "#d84315",
+  linear: "#2e7d32",
+  fit: "#5f6368",
+  zero: "#b0b0b0",
+};
+
+Chart.defaults.animation = false;
+Chart.defaults.responsive = true;
+Chart.defaults.maintainAspectRatio = false;
+Chart.defaults.font.family = "system-ui, -apple-system, 'Segoe UI', Roboto, 'Helvetica Neue', Arial, sans-serif";
+Chart.defaults.color = "#333";
+Chart.defaults.plugins.legend.labels.boxHeight = 2;
+
+/** What each figure drew: {state, series: {key: {label, x, y}}, marks: {key: value}}. */
+export const registry = {};
+const charts = new Map();
+
+// ------------------------------------------------------------------------------ chart plugins
+
+// Vertical lines (a speed marked on an airspeed axis), horizontal lines, shaded x-ranges and text
+// labels at data coordinates: options.plugins.annotations = {vlines, hlines, regions, labels}.
+const annotations = {
+  id: "annotations",
+  beforeDatasetsDraw(chart, _args, opts) {
+    const { ctx, chartArea: area, scales } = chart;
+    for (const region of opts.regions ?? []) {
+      const left = Math.max(area.left, scales.x.getPixelForValue(region.from));
+      const right = Math.min(area.right, scales.x.getPixelForValue(region.to));
+      if (right <= left) continue;
+      ctx.save();
+      ctx.fillStyle = region.color;
+      ctx.fillRect(left, area.top, right - left, area.bottom - area.top);
+      ctx.restore();
+    }
+    for (const line of opts.hlines ?? []) {
+      const py = scales.y.getPixelForValue(line.y);
+      if (py < area.top || py > area.bottom) continue;
+      ctx.save();
+      ctx.strokeStyle = line.color ?? COLORS.zero;
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.moveTo(area.left, py);
+      ctx.lineTo(area.right, py);
+      ctx.stroke();
+      ctx.restore();
+    }
+  },
+  afterDatasetsDraw(chart, _args, opts) {
+    const { ctx, chartArea: area, scales } = chart;
+    (opts.vlines ?? []).forEach((line, row) => {
+      const px = scales.x.getPixelForValue(line.x);
+      if (!(px >= area.left - 0.5 && px <= area.right + 0.5)) return;
+      ctx.save();
+      ctx.strokeStyle = line.color;
+      ctx.lineWidth = 1.5;
+      ctx.setLineDash(line.dash ?? []);
+      ctx.beginPath();
+      ctx.moveTo(px, area.top);
+      ctx.lineTo(px, area.bottom);
+      ctx.stroke();
+      ctx.setLineDash([]);
+      if (opts.vlineLabels !== false) {
+        // One row per line, right-aligned to it, on a white box: labels of close speeds stack.
+        ctx.font = "12px " + Chart.defaults.font.family;
+        ctx.textAlign = "right";
+        ctx.textBaseline = "middle";
+        const width = ctx.measureText(line.label).width;
+        const x = Math.max(px - 4, area.left + width + 4);
+        const y = area.top + 10 + 17 * row;
+        ctx.fillStyle = "rgba(255, 255, 255, 0.85)";
+        ctx.fillRect(x - width - 3, y - 8, width + 6, 16);
+        ctx.fillStyle = line.color;
+        ctx.fillText(line.label, x, y);
+      }
+      ctx.restore();
+    });
+    for (const label of opts.labels ?? []) {
+      const px = scales.x.getPixelForValue(label.x) + (label.dx ?? 0);
+      const py = scales.y.getPixelForValue(label.y) + (label.dy ?? 0);
+      ctx.save();
+      ctx.fillStyle = label.color ?? "#333";
+      ctx.font = "bold 12px " + Chart.defaults.font.family;
+      ctx.textAlign = label.align ?? "left";
+      ctx.textBaseline = "middle";
+      ctx.fillText(label.text, Math.min(Math.max(px, area.left + 2), area.right - 2), Math.min(Math.max(py, area.top + 8), area.bottom - 8));
+      ctx.restore();
+    }
+  },
+};
+
+// Equal scales on both axes (a drawing of the wing, not a graph): options.plugins.equalAspect =
+// {xmin, xmax, ymin, ymax}, the box to show. After each layout the axis limits are widened so one
+// metre spans as many pixels across as up; the chart is redrawn once when they change.
+const equalAspect = {
+  id: "equalAspect",
+  afterLayout(chart, _args, box) {
+    if (box?.xmin === undefined) return;
+    const { width, height } = chart.chartArea;
+    if (!(width > 0 && height > 0)) return;
+    const perPixel = Math.max((box.xmax - box.xmin) / width, (box.ymax - box.ymin) / height);
+    const cx = (box.xmin + box.xmax) / 2;
+    const cy = (box.ymin + box.ymax) / 2;
+    const want = {
+      x: [cx - (perPixel * width) / 2, cx + (perPixel * width) / 2],
+      y: [cy - (perPixel * height) / 2, cy + (perPixel * height) / 2],
+    };
+    const scales = chart.config.options.scales;
+    const close = (axis) =>
+      Math.abs(scales[axis].min - want[axis][0]) < perPixel && Math.abs(scales[axis].max - want[axis][1]) < perPixel;
+    if (close("x") && close("y")) return;
+    for (const axis of ["x", "y"]) [scales[axis].min, scales[axis].max] = want[axis];
+    requestAnimationFrame(() => chart.canvas?.isConnected && chart.update("none"));
+  },
+};
+
+// ------------------------------------------------------------------------------------ helpers
+
+function points(xs, ys) {
+  return xs.map((x, i) => ({ x, y: ys[i] }));
+}
+
+function axis(title, extra = {}) {
+  return {
+    type: "linear",
+    title: { display: true, text: title },
+    grid: { color: "#e6e6e6" },
+    ...extra,
+    ticks: { maxTicksLimit: 8, ...extra.ticks },
+  };
+}
+
+function line(label, data, color, extra = {}) {
+  return {
+    label,
+    data,
+    borderColor: color,
+    backgroundColor: color,
+    showLine: true,
+    borderWidth: 2,
+    pointRadius: 0,
+    pointHitRadius: 6,
+    ...extra,
+  };
+}
+
+function draw(canvasId, { title, datasets, xTitle, yTitle, x = {}, y = {}, plugins = {}, legend = true, pointLegend = false }) {
+  charts.get(canvasId)?.destroy();
+  const canvas = document.getElementById(canvasId);
+  const chart = new Chart(canvas, {
+    type: "scatter",
+    data: { datasets },
+    options: {
+      scales: { x: axis(xTitle, x), y: axis(yTitle, y) },
+      plugins: {
+        title: { display: Boolean(title), text: title, font: { size: 13, weight: "600" } },
+        // pointLegend: each legend entry drawn in its dataset's pointStyle ("line" for curves).
+        legend: { display: legend, labels: pointLegend ? { usePointStyle: true, boxHeight: 10 } : {} },
+        tooltip: { intersect: false, mode: "nearest" },
+        ...plugins,
+      },
+    },
+    plugins: [annotations, equalAspect],
+  });
+  charts.set(canvasId, chart);
+  return chart;
+}
+
+function record(figureId, series, marks = {}, notes = {}) {
+  registry[figureId] = {
+    state: "drawn",
+    series: Object.fromEntries(
+      Object.entries(series).map(([key, s]) => [key, { label: s.label, x: [...s.x], y: [...s.y] }]),
+    ),
+    marks,
+    ...notes,
+  };
+  const figure = document.getElementById(`fig-${figureId.replace(".", "-")}`);
+  figure.dataset.state = "drawn";
+  figure.dataset.series = Object.keys(series).join(" ");
+}
+
+export function clear(figureId) {
+  registry[figureId] = { state: "empty", series: {}, marks: {} };
+  const figure = document.getElementById(`fig-${figureId.replace(".", "-")}`);
+  figure.dataset.state = "empty";
+  figure.dataset.series = "";
+  for (const canvas of figure.querySelectorAll("canvas")) {
+    charts.get(canvas.id)?.destroy();
+    charts.delete(canvas.id);
+  }
+}
+
+const fmt = (value, digits) => (value == null ? "n/a" : value.toFixed(digits));
+
+// ---------------------------------------------------------------------------------- figure 14.2
+
+/** Lift per span (rigid and flexible), twist and heave along the span. `rigid` may be null. */
+export function drawSpanwise(solution, rigid) {
+  const { stations, panels } = solution;
+  const series = {
+    lift_flexible: { label: "flexible", x: panels.y, y: panels.lift_per_span },
+    twist: { label: "twist", x: stations.y, y: stations.twist },
+    heave: { label: "heave", x: stations.y, y: stations.heave },
+  };
+  const liftSets = [line("flexible", points(panels.y, panels.lift_per_span), COLORS.flexible)];
+  if (rigid) {
+    series.lift_rigid = { label: "rigid (jig shape)", x: rigid.panels.y, y: rigid.panels.lift_per_span };
+    liftSets.unshift(line("rigid (jig shape)", points(rigid.panels.y, rigid.panels.lift_per_span), COLORS.rigid));
+  }
+  const span = { min: 0 };
+  draw("chart-lift", {
+    title: "Flexibility shifts the lift distribution outboard",
+    datasets: liftSets,
+    xTitle: "spanwise position y [m]",
+    yTitle: "lift per span [N/m]",
+    x: span,
+    y: { beginAtZero: true },
+  });
+  draw("chart-twist", {
+    title: "Nose-up twist (wash-in) accumulates toward the tip",
+    datasets: [line("twist", points(stations.y, stations.twist), COLORS.flexible)],
+    xTitle: "spanwise position y [m]",
+    yTitle: "twist θ [deg]",
+    x: span,
+    legend: false,
+    plugins: { annotations: { hlines: [{ y: 0 }] } },
+  });
+  draw("chart-heave", {
+    title: "Bending deflection",
+    datasets: [line("heave", points(stations.y, stations.heave), COLORS.flexible)],
+    xTitle: "spanwise position y [m]",
+    yTitle: "heave u [m]",
+    x: span,
+    legend: false,
+  });
+  record("14.2", series, { tip_twist: solution.totals.tip_twist, tip_heave: solution.totals.tip_heave });
+}
+
+// ---------------------------------------------------------------------------------- figure 14.3
+
+/** Bending moment and torque along the span, root values labelled. */
+export function drawLoads(solution) {
+  const { stations, totals } = solution;
+  const rootM = totals.root_bending_moment;
+  const rootT = totals.root_torque;
+  const labelM = `root: ${fmt(rootM, 0)} N·m`;
+  const labelT = `root: ${fmt(rootT, 1)} N·m`;
+  draw("chart-moment", {
+    title: "Bending moment, flexible wing",
+    datasets: [line("bending moment", points(stations.y, stations.bending_moment), COLORS.moment)],
+    xTitle: "spanwise position y [m]",
+    yTitle: "bending moment M [N·m]",
+    x: { min: 0 },
+    legend: false,
+    plugins: { annotations: { labels: [{ x: stations.y[0], y: rootM, text: labelM, color: COLORS.moment, dx: 10 }] } },
+  });
+  draw("chart-torque", {
+    title: "Elastic-axis torque, flexible wing",
+    datasets: [line("torque", points(stations.y, stations.torque), COLORS.torque)],
+    xTitle: "spanwise position y [m]",
+    yTitle: "torque T [N·m]",
+    x: { min: 0 },
+    legend: false,
+    plugins: { annotations: { labels: [{ x: stations.y[0], y: rootT, text: labelT, color: COLORS.torque, dx: 10 }], hlines: [{ y: 0 }] } },
+  });
+  record(
+    "14.3",
+    {
+      bending_moment: { label: "bending moment", x: stations.y, y: stations.bending_moment },
+      torque: { label: "torque", x: stations.y, y: stations.torque },
+    },
+    { root_bending_moment: rootM, root_torque: rootT },
+    { labels: [labelM, labelT] },
+  );
+}
+
+// ---------------------------------------------------------------------------------- figure 14.4
+
+/** The study's amplification A of a sweep point, as the fit defines it (fit.amplification). */
+export function amplification(equilibrium, kind) {
+  const { totals } = equilibrium;
+  if (!totals.rigid_lift) return null;
+  const ratio = totals.lift / totals.rigid_lift;
+  return kind === "CL" ? (ratio * totals.reference_area) / totals.deformed_area : ratio;
+}
+
+/** Tip twist and lift amplification against airspeed, the fitted 1/A law, and the speeds. */
+export function drawSweep(sweep, density) {
+  const { fit, linear, fold } = sweep.divergence;
+  const solved = sweep.points.filter((p) => p.status === "equilibrium");
+  const failed = sweep.points.filter((p) => p.status !== "equilibrium");
+  const kind = fit.amplification;
+  const V = solved.map((p) => p.velocity);
+  const twist = solved.map((p) => p.equilibrium.totals.tip_twist);
+  const A = solved.map((p) => amplification(p.equilibrium, kind));
+  const series = {
+    tip_twist: { label: "tip twist", x: V, y: twist },
+    amplification: { label: "coupled model", x: V, y: A },
+    no_equilibrium: { label: "no equilibrium", x: failed.map((p) => p.velocity), y: failed.map(() => 0) },
+  };
+  const marks = {
+    fold_velocity: fold.velocity,
+    linear_velocity: linear.velocity,
+    fit_velocity: fit.velocity,
+    fit_slope: fit.slope,
+    fit_intercept: fit.intercept,
+  };
+  const vlines = [];
+  if (fold.velocity != null) vlines.push({ x: fold.velocity, label: `fold ${fmt(fold.velocity, 2)} m/s: equilibria end`, color: COLORS.fold });
+  if (linear.velocity != null) vlines.push({ x: linear.velocity, label: `linear divergence ${fmt(linear.velocity, 2)} m/s`, color: COLORS.linear, dash: [6, 4] });
+  if (fit.velocity != null) vlines.push({ x: fit.velocity, label: `fit: V_div ${fmt(fit.velocity, 2)} m/s`, color: COLORS.fit, dash: [2, 3] });
+  const regions = fold.velocity != null ? [{ from: fold.velocity, to: 1e9, color: "rgba(216, 67, 21, 0.07)" }] : [];
+  const xmax = 5 * Math.ceil((1.03 * Math.max(...sweep.points.map((p) => p.velocity), ...vlines.map((l) => l.x))) / 5);
+  const ampSets = [];
+  if (fit.slope != null && fit.intercept != null && fit.velocity != null) {
+    // The study draws the fit from 0 to 92 % of its divergence speed.
+    const fitV = Array.from({ length: 300 }, (_, i) => (0.92 * fit.velocity * i) / 299);
+    const fitA = fitV.map((v) => 1 / (fit.intercept + fit.slope * 0.5 * density * v * v));
+    series.amplification_fit = { label: "A = 1/(1 - q/q_div)", x: fitV, y: fitA };
+    ampSets.push(line("fit: A = 1/(intercept + slope q)", points(fitV, fitA), COLORS.fit, { borderDash: [6, 4], borderWidth: 1.5, pointStyle: "line" }));
+  }
+  ampSets.push(line("coupled model", points(V, A), COLORS.flexible, { showLine: false, pointRadius: 4, pointStyle: "circle" }));
+  const noEq = { label: "no equilibrium", data: points(series.no_equilibrium.x, series.no_equilibrium.y), borderColor: COLORS.fold, backgroundColor: COLORS.fold, pointStyle: "crossRot", pointRadius: 7, borderWidth: 2 };
+  if (failed.length) ampSets.push(noEq);
+  const speed = { min: 0, max: xmax };
+  draw("chart-tiptwist", {
+    title: "Twist runs away as airspeed rises",
+    datasets: [line("tip twist", points(V, twist), COLORS.flexible, { pointRadius: 4 }), ...(failed.length ? [{ ...noEq, data: points(series.no_equilibrium.x, series.no_equilibrium.y) }] : [])],
+    xTitle: "airspeed V [m/s]",
+    yTitle: "tip twist [deg]",
+    x: speed,
+    legend: failed.length > 0,
+    pointLegend: true,
+    plugins: { annotations: { vlines, regions, vlineLabels: false } },
+  });
+  draw("chart-amp", {
+    title: "Lift amplification follows the divergence law",
+    datasets: ampSets,
+    xTitle: "airspeed V [m/s]",
+    yTitle: kind === "CL" ? "amplification CL / CL_rigid [-]" : "amplification L / L_rigid [-]",
+    x: speed,
+    y: { min: 0 },
+    pointLegend: true,
+    plugins: { annotations: { vlines, regions } },
+  });
+  record("14.4", series, marks, { amplification: kind, points_used: fit.points_used });
+}
+
+// ---------------------------------------------------------------------------------- figure 14.5
+
+function bounds(pointLists) {
+  const all = pointLists.flat().filter((p) => p.x !== null);
+  const xs = all.map((p) => p.x);
+  const ys = all.map((p) => p.y);
+  const box = { xmin: Math.min(...xs), xmax: Math.max(...xs), ymin: Math.min(...ys), ymax: Math.max(...ys) };
+  const pad = 0.04 * Math.max(box.xmax - box.xmin, box.ymax - box.ymin);
+  return { xmin: box.xmin - pad, xmax: box.xmax + pad, ymin: box.ymin - pad, ymax: box.ymax + pad };
+}
+
+/** Jig and deformed shape in three views; `scale` exaggerates the deformation (1: true). */
+export function drawShape(wing, equilibrium, label, scale = 1) {
+  const { stations } = equilibrium;
+  const base = { y: wing.y, chord: wing.chord, elasticAxis: wing.elastic_axis };
+  const zeros = wing.y.map(() => 0);
+  const jig = sections({ ...base, heave: zeros, twist: zeros });
+  const deformed = sections({ ...base, heave: stations.heave, twist: stations.twist, scale });
+  const deformedLabel = scale === 1 ? `deformed, ${label}` : `deformed ×${scale}, ${label}`;
+  const views = [
+    ["top", "chart-top", "Top view", "y [m]", "x [m], aft down"],
+    ["front", "chart-front", "Front view (bending)", "y [m]", "z [m]"],
+    ["side", "chart-side", "Side view from the right tip (twist)", "x [m]", "z [m]"],
+  ];
+  const series = {};
+  for (const [view, canvasId, title, xTitle, yTitle] of views) {
+    const jigPoints = wireframe(jig, view);
+    const deformedPoints = wireframe(deformed, view);
+    series[`${view}_jig`] = { label: "jig", x: jigPoints.map((p) => p.x), y: jigPoints.map((p) => p.y) };
+    series[`${view}_deformed`] = { label: deformedLabel, x: deformedPoints.map((p) => p.x), y: deformedPoints.map((p) => p.y) };
+    draw(canvasId, {
+      title,
+      datasets: [
+        line("jig (undeformed)", jigPoints, COLORS.rigid, { borderWidth: 1 }),
+        line(deformedLabel, deformedPoints, COLORS.flexible, { borderWidth: 1.2 }),
+      ],
+      xTitle,
+      yTitle,
+      x: { ticks: { includeBounds: false } },
+      y: view === "top" ? { reverse: true, ticks: { includeBounds: false } } : { ticks: { includeBounds: false } },
+      plugins: { equalAspect: bounds([jigPoints, deformedPoints]) },
+      legend: view === "top",
+    });
+  }
+  record("14.5", series, { scale, tip_heave: stations.heave.at(-1), tip_twist: stations.twist.at(-1) }, { label });
+}
+
+// ----------------------------------------------------------------------------------- exporting
+
+/** The figure's charts as one PNG (laid out as on screen, white background), as a Blob. */
+export function figurePNG(figure) {
+  const canvases = [...figure.querySelectorAll("canvas")].filter((c) => charts.has(c.id));
+  if (!canvases.length) return Promise.resolve(null);
+  const ratio = canvases[0].width / canvases[0].getBoundingClientRect().width || 1;
+  const rects = canvases.map((c) => c.getBoundingClientRect());
+  const left = Math.min(...rects.map((r) => r.left));
+  const top = Math.min(...rects.map((r) => r.top));
+  const width = Math.max(...rects.map((r) => r.right)) - left;
+  const height = Math.max(...rects.map((r) => r.bottom)) - top;
+  const band = 28;
+  const out = document.createElement("canvas");
+  out.width = Math.round(width * ratio);
+  out.height = Math.round((height + band) * ratio);
+  const ctx = out.getContext("2d");
+  ctx.scale(ratio, ratio);
+  ctx.fillStyle = "#fff";
+  ctx.fillRect(0, 0, width, height + band);
+  ctx.fillStyle = "#222";
+  ctx.font = "bold 14px " + Chart.defaults.font.family;
+  ctx.textBaseline = "middle";
+  ctx.fillText(figure.dataset.title ?? "", 8, band / 2);
+  canvases.forEach((canvas, i) => {
+    ctx.drawImage(canvas, rects[i].left - left, rects[i].top - top + band, rects[i].width, rects[i].height);
+  });
+  return new Promise((resolve) => out.toBlob(resolve, "image/png"));
+}
+
+/** Redraw every chart at its container's size (after the layout changed). */
+export function resizeAll() {
+  for (const chart of charts.values()) chart.resize();
+}

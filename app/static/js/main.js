@@ -1,0 +1,708 @@
+// The page: wing editor, flight panel, Solve and Sweep, results and figures. Plain ES modules,
+// no build step; every asset comes from this app (see app/routes/page.py).
+
+import * as api from "./api.js";
+import { downloadBlob, downloadJSON, downloadText, toCSV } from "./download.js";
+import {
+  FLIGHT_FIELDS,
+  OPTIONAL_FIELDS,
+  PLANFORM_FIELDS,
+  SWEEP_FIELDS,
+  controlValue,
+  renderField,
+  setPath,
+} from "./fields.js";
+import * as figures from "./figures.js";
+import { StationTable, stationsFromPlanform } from "./wing.js";
+
+const $ = (id) => document.getElementById(id);
+
+const state = {
+  mode: "planform",
+  controls: {}, // key -> {field, control}
+  extra: [], // optional fields this API version has: {field, control}
+  passThrough: {}, // wing keys loaded from JSON that the editor does not know
+  solve: null, // {request, response, rigid, rigidNote}
+  sweep: null, // {request, response}
+  runs: { solve: 0, sweep: 0, failed: 0 },
+  busy: false,
+  abort: null,
+};
+
+// What tests (and curious users) can read: window.__flexwing.figures["14.2"].series, etc.
+window.__flexwing = {
+  figures: figures.registry,
+  state,
+  ready: false,
+  get totals() {
+    return state.solve?.response.totals ?? null;
+  },
+};
+
+// ------------------------------------------------------------------------------------ editor
+
+const table = new StationTable($("stations-table"), {
+  onEdit: () => {
+    if (state.mode !== "table") setMode("table");
+    updateCount();
+  },
+});
+
+function render(fields, parent, options = {}) {
+  for (const field of fields) {
+    const control = renderField(field, parent, options);
+    state.controls[field.key] = { field, control };
+  }
+}
+
+function value(key) {
+  const { field, control } = state.controls[key];
+  return controlValue(control, field.kind);
+}
+
+function planformValues() {
+  return Object.fromEntries(PLANFORM_FIELDS.map((f) => [f.key, value(f.key)]));
+}
+
+function regenerate() {
+  table.fill(stationsFromPlanform(planformValues()));
+  updateCount();
+}
+
+function updateCount() {
+  $("station-count").textContent = String(table.rows);
+}
+
+function setMode(mode) {
+  state.mode = mode;
+  $(`mode-${mode}`).checked = true;
+  $("planform").disabled = mode === "table";
+  $("planform-note").textContent =
+    mode === "planform"
+      ? "The station table follows these numbers."
+      : 'The station table was edited or loaded, so the planform numbers no longer apply; choose "planform numbers" to fill the table from them again.';
+  if (mode === "planform") regenerate();
+}
+
+function wing() {
+  const result = { ...state.passThrough, ...table.read() };
+  for (const { field, control } of state.extra) {
+    if (field.path?.startsWith("wing.") && field.kind !== "column") {
+      const v = controlValue(control, field.kind);
+      if (v !== null && v !== "") setPath(result, field.path.slice("wing.".length), v);
+    }
+  }
+  return result;
+}
+
+function flight({ withVelocity }) {
+  const result = {};
+  for (const field of FLIGHT_FIELDS) {
+    if (field.solveOnly && !withVelocity) continue;
+    setPath(result, field.path, value(field.key));
+  }
+  for (const { field, control } of state.extra) {
+    if (field.path?.startsWith("flight.")) {
+      const v = controlValue(control, field.kind);
+      if (v !== null && v !== "") setPath(result, field.path, v);
+    }
+  }
+  return result.flight;
+}
+
+function solveRequest() {
+  return { wing: wing(), flight: flight({ withVelocity: true }) };
+}
+
+function sweepRequest() {
+  const request = { wing: wing(), flight: flight({ withVelocity: false }) };
+  for (const field of SWEEP_FIELDS) setPath(request, field.path, value(field.key));
+  return request;
+}
+
+/** Optional fields: shown when the running server's OpenAPI document has them. */
+async function addOptionalFields() {
+  const doc = await api.openapi();
+  const schemas = doc?.components?.schemas ?? {};
+  let columns = false;
+  for (const field of OPTIONAL_FIELDS) {
+    const property = schemas[field.schema]?.properties?.[field.property];
+    if (!property) continue;
+    const described = { ...field, hint: property.description };
+    if (field.kind === "column") {
+      table.addColumn({ key: field.property, label: field.label, unit: field.unit, value: field.value });
+      columns = true;
+      continue;
+    }
+    const parent = field.schema === "Flight" ? $("flight") : $("wing-extra");
+    state.extra.push({ field: described, control: renderField(described, parent) });
+  }
+  if (columns) table.fill(table.read());
+}
+
+// ------------------------------------------------------------------------------------ errors
+
+function describedBy(control, id, add) {
+  const ids = new Set((control.getAttribute("aria-describedby") ?? "").split(" ").filter(Boolean));
+  if (add) ids.add(id);
+  else ids.delete(id);
+  if (ids.size) control.setAttribute("aria-describedby", [...ids].join(" "));
+  else control.removeAttribute("aria-describedby");
+}
+
+function clearErrors() {
+  for (const element of document.querySelectorAll(".field-error[data-for]")) {
+    const control = $(element.dataset.for);
+    if (control) {
+      control.removeAttribute("aria-invalid");
+      describedBy(control, element.id, false);
+    }
+    element.remove();
+  }
+  for (const element of document.querySelectorAll(".invalid")) element.classList.remove("invalid");
+  $("problem").hidden = true;
+  $("problem").replaceChildren();
+}
+
+/** Show `text` next to `control` (an input, select or table header). */
+function attachError(control, text) {
+  const id = `${control.id}-error`;
+  let element = $(id);
+  if (!element) {
+    element = document.createElement("p");
+    element.className = "field-error";
+    element.id = id;
+    element.dataset.for = control.id;
+    if (control.tagName === "TH") control.append(element);
+    else control.insertAdjacentElement("afterend", element);
+  }
+  element.textContent = element.textContent ? `${element.textContent}; ${text}` : text;
+  control.classList.add("invalid");
+  if (control.tagName !== "TH") {
+    control.setAttribute("aria-invalid", "true");
+    describedBy(control, id, true);
+  }
+}
+
+/** The controls that produced the value at `path` ("wing.chord[3]", "flight.velocity"). */
+function controlsFor(path) {
+  const found = [];
+  const exact = document.querySelector(`[data-path="${CSS.escape(path)}"]`);
+  const match = /^wing\.(\w+)(?:\[(\d+)\])?/.exec(path);
+  if (match) {
+    const [, list, index] = match;
+    // In planform mode the numbers that generated the value come first (focus goes there).
+    if (state.mode === "planform") {
+      for (const field of PLANFORM_FIELDS.filter((f) => f.feeds?.includes(list))) {
+        const last = table.rows - 1;
+        if (field.key === "root_chord" && index !== undefined && Number(index) === last && last > 0) continue;
+        if (field.key === "tip_chord" && index !== undefined && Number(index) === 0) continue;
+        found.push(state.controls[field.key].control);
+      }
+    }
+    if (exact) found.push(exact);
+    else {
+      const cell = index !== undefined ? $(`cell-${list}-${index}`) : null;
+      found.push(cell ?? $(`col-${list}`));
+    }
+  } else if (exact) {
+    found.push(exact);
+  }
+  return found.filter(Boolean);
+}
+
+function stationWords(path) {
+  const match = /^wing\.(\w+)\[(\d+)\]/.exec(path);
+  return match ? `station ${match[2]} (${match[1]}): ` : "";
+}
+
+function showFieldErrors(errors) {
+  let first = null;
+  const unplaced = [];
+  for (const { field, reason } of errors) {
+    const controls = controlsFor(field);
+    if (!controls.length) unplaced.push({ field, reason });
+    for (const control of controls) {
+      const inTable = control.closest("#stations-table") !== null;
+      attachError(control, inTable ? reason : `${stationWords(field)}${reason}`);
+      if (inTable) $("stations-details").open = true;
+      first ??= control.tagName === "TH" ? null : control;
+    }
+  }
+  return { first, unplaced };
+}
+
+function plainProblem(error, velocity) {
+  const p = error.problem;
+  const type = p.type ?? "";
+  if (type.endsWith("/no-equilibrium")) {
+    const v = p.velocity ?? velocity;
+    const fold = p.fold_velocity;
+    return {
+      title: `No equilibrium at ${v} m/s`,
+      text:
+        fold != null
+          ? `This wing twists until it diverges: its equilibria end at the fold speed, ${fold.toFixed(2)} m/s, and none exists faster. Fly slower than ${fold.toFixed(2)} m/s, or make the wing stiffer in torsion (GJ) or move its elastic axis forward.`
+          : "This wing twists until it diverges at this airspeed, and the fold speed where its equilibria end could not be located. Try a lower airspeed.",
+    };
+  }
+  if (type.endsWith("/invalid-input")) {
+    const n = p.error_count ?? p.errors?.length ?? 0;
+    return { title: "Check the highlighted inputs", text: `The service found ${n} invalid input${n === 1 ? "" : "s"}; each reason is shown next to its field.` };
+  }
+  if (type.endsWith("/not-converged")) {
+    return { title: "The solver did not converge", text: `${p.detail} Try a lower airspeed.` };
+  }
+  if (error.status === 503) {
+    return { title: p.title ?? "The service is busy", text: `${p.detail ?? ""} Try again in ${p.retryAfter ?? "a few"} s.` };
+  }
+  return { title: p.title ?? `HTTP ${error.status}`, text: p.detail ?? "" };
+}
+
+function showProblem(error, velocity) {
+  const box = $("problem");
+  box.replaceChildren();
+  box.dataset.type = error.problem.type ?? "";
+  const { title, text } = plainProblem(error, velocity);
+  const heading = document.createElement("strong");
+  heading.textContent = title;
+  const body = document.createElement("p");
+  body.textContent = text;
+  box.append(heading, body);
+  let first = null;
+  if (error.problem.errors?.length) {
+    const placed = showFieldErrors(error.problem.errors);
+    first = placed.first;
+    const list = document.createElement("ul");
+    for (const { field, reason } of error.problem.errors) {
+      const item = document.createElement("li");
+      const code = document.createElement("code");
+      code.textContent = field;
+      item.append(code, `: ${reason}`);
+      list.append(item);
+    }
+    box.append(list);
+  }
+  box.hidden = false;
+  if (first) {
+    first.focus({ preventScroll: true }); // keyboard users land on the first input to fix
+    first.scrollIntoView({ block: "center" });
+  } else {
+    box.scrollIntoView({ block: "nearest" });
+  }
+}
+
+// -------------------------------------------------------------------------------- busy state
+
+let ticker = null;
+
+function setBusy(message, { cancellable = false } = {}) {
+  state.busy = true;
+  const started = performance.now();
+  $("progress").hidden = false;
+  $("progress").removeAttribute("value");
+  $("status-text").textContent = message;
+  $("cancel").hidden = !cancellable;
+  $("results").setAttribute("aria-busy", "true");
+  for (const id of ["solve-button", "sweep-button"]) $(id).disabled = true;
+  clearInterval(ticker);
+  ticker = setInterval(() => {
+    $("status-text").dataset.elapsed = `${((performance.now() - started) / 1000).toFixed(1)} s`;
+  }, 100);
+}
+
+function setProgress({ done, total, message }) {
+  if (total > 0 && done > 0) {
+    $("progress").max = total;
+    $("progress").value = done;
+  }
+  if (message) $("status-text").textContent = message;
+}
+
+function setIdle(message) {
+  state.busy = false;
+  clearInterval(ticker);
+  $("progress").hidden = true;
+  $("status-text").textContent = message;
+  delete $("status-text").dataset.elapsed;
+  $("cancel").hidden = true;
+  $("results").removeAttribute("aria-busy");
+  for (const id of ["solve-button", "sweep-button"]) $(id).disabled = false;
+}
+
+// ------------------------------------------------------------------------------------- solve
+
+async function runSolve() {
+  if (state.busy) return;
+  clearErrors();
+  const request = solveRequest();
+  setBusy(`Solving at ${request.flight.velocity} m/s`);
+  let response;
+  try {
+    response = await api.solve(request);
+  } catch (error) {
+    state.runs.failed++;
+    setIdle("Solve failed.");
+    if (error instanceof api.ProblemError) showProblem(error, request.flight.velocity);
+    else throw error;
+    return;
+  }
+  const rigid = { panels: { y: response.panels.y, lift_per_span: response.panels.rigid_lift_per_span } };
+  const rigidNote =
+    "Rigid: the jig shape's own lattice solution at the same condition (panels.rigid_lift_per_span), " +
+    `${f(response.totals.rigid_lift, 1)} N in all.`;
+  state.solve = { request, response, rigid, rigidNote };
+  state.runs.solve++;
+  renderSolve();
+  setIdle(`Solved at ${request.flight.velocity} m/s in ${(response.solver.seconds * 1000).toFixed(1)} ms of solver time.`);
+}
+
+const f = (x, digits) => (x == null ? "n/a" : x.toFixed(digits));
+const signed = (x, digits) => (x == null ? "n/a" : `${x >= 0 ? "+" : ""}${x.toFixed(digits)}`);
+
+const TOTALS = [
+  ["lift", "Lift", (r) => `${f(r.totals.lift, 1)} N`],
+  ["rigid_lift", "Rigid lift (jig shape)", (r) => `${f(r.totals.rigid_lift, 1)} N`],
+  ["lift_amplification", "Lift amplification L / L_rigid", (r) => f(r.totals.lift_amplification, 3)],
+  ["tip_twist", "Tip twist (nose-up > 0)", (r) => `${signed(r.totals.tip_twist, 2)} deg`],
+  ["tip_heave", "Tip heave", (r, w) => `${f(r.totals.tip_heave, 4)} m (${f((100 * r.totals.tip_heave) / w.y.at(-1), 1)} % of b/2)`],
+  ["root_bending_moment", "Root bending moment", (r) => `${f(r.totals.root_bending_moment, 1)} N·m`],
+  ["root_torque", "Root torque", (r) => `${f(r.totals.root_torque, 2)} N·m`],
+  ["margin", "Stability margin q / q_div (local)", (r) => `${f(r.stability.margin, 3)} (${r.stability.stable ? "stable" : "UNSTABLE"})`],
+  ["divergence_velocity", "Linear divergence speed", (r) => `${f(r.stability.divergence_velocity, 2)} m/s`],
+  ["CL", "CL (jig area)", (r) => f(r.totals.CL, 3)],
+  ["induced_drag", "Induced drag", (r) => `${f(r.totals.induced_drag, 2)} N`],
+  ["solver", "Solver", (r) => `${r.solver.iterations} Newton iterations${r.solver.cached ? ", from the cache" : ""}`],
+];
+
+function renderSolve() {
+  const { request, response, rigid, rigidNote } = state.solve;
+  $("totals").replaceChildren(
+    ...TOTALS.map(([key, label, format]) => {
+      const item = document.createElement("div");
+      item.dataset.total = key;
+      const term = document.createElement("dt");
+      term.textContent = label;
+      const value = document.createElement("dd");
+      value.textContent = format(response, request.wing);
+      item.append(term, value);
+      return item;
+    }),
+  );
+  const { velocity, alpha, density } = request.flight;
+  $("totals-condition").textContent = `${velocity} m/s, alpha ${alpha} deg, ${density} kg/m^3`;
+  $("rigid-note").textContent = rigidNote;
+  figures.drawSpanwise(response, rigid);
+  figures.drawLoads(response);
+  updateShapeChoices("solve");
+  for (const id of ["download-json", "download-stations", "download-panels"]) $(id).disabled = false;
+}
+
+// ------------------------------------------------------------------------------------- sweep
+
+async function runSweep() {
+  if (state.busy) return;
+  clearErrors();
+  const request = sweepRequest();
+  const controller = new AbortController();
+  state.abort = controller;
+  setBusy("Sweeping", { cancellable: true });
+  try {
+    const response = await api.runSweep(request, { signal: controller.signal, onProgress: setProgress });
+    state.sweep = { request, response };
+    state.runs.sweep++;
+    renderSweep();
+    const solved = response.points.filter((p) => p.status === "equilibrium").length;
+    setIdle(`Swept ${response.points.length} airspeeds: ${solved} equilibria.`);
+  } catch (error) {
+    state.runs.failed++;
+    if (error.name === "AbortError") {
+      setIdle("Sweep cancelled.");
+    } else if (error instanceof api.ProblemError) {
+      setIdle("Sweep failed.");
+      showProblem(error);
+    } else {
+      setIdle("Sweep failed.");
+      throw error;
+    }
+  } finally {
+    state.abort = null;
+  }
+}
+
+const SWEEP_COLUMNS = [
+  ["V [m/s]", (p) => f(p.velocity, 2)],
+  ["status", (p) => p.status.replace("_", " ")],
+  ["lift [N]", (p) => f(p.equilibrium?.totals.lift, 1)],
+  ["L / L_rigid", (p) => f(p.equilibrium?.totals.lift_amplification, 3)],
+  ["tip twist [deg]", (p) => signed(p.equilibrium?.totals.tip_twist, 2)],
+  ["tip heave [m]", (p) => f(p.equilibrium?.totals.tip_heave, 3)],
+  ["margin", (p) => f(p.equilibrium?.stability.margin, 3)],
+];
+
+function renderSweep() {
+  const { request, response } = state.sweep;
+  const { fit, linear, fold } = response.divergence;
+  figures.drawSweep(response, request.flight.density);
+  const notes = [];
+  if (fit.velocity != null) {
+    notes.push(
+      `Dashed: the study's fit 1/A = ${f(fit.intercept, 3)} ${fit.slope < 0 ? "-" : "+"} ${Math.abs(fit.slope).toExponential(3)} q over ${fit.points_used} stable points ` +
+        `(A = ${fit.amplification === "CL" ? "CL / CL_rigid, CL on the deformed area as the study computes it" : "L / L_rigid"}), drawn to 92 % of its V_div ${f(fit.velocity, 2)} m/s.`,
+    );
+  } else notes.push(`No fit: ${fit.reason}.`);
+  notes.push(fold.velocity != null ? `Equilibria end at the fold, ${f(fold.velocity, 2)} m/s (shaded beyond).` : `Fold: ${fold.reason}.`);
+  notes.push(linear.velocity != null ? `Linear divergence at the jig: ${f(linear.velocity, 2)} m/s.` : `Linear divergence: ${linear.reason}.`);
+  $("sweep-note").textContent = notes.join(" ");
+  const head = $("sweep-table").tHead;
+  head.replaceChildren();
+  const headRow = head.insertRow();
+  for (const [label] of SWEEP_COLUMNS) {
+    const th = document.createElement("th");
+    th.scope = "col";
+    th.textContent = label;
+    headRow.append(th);
+  }
+  const body = $("sweep-table").tBodies[0];
+  body.replaceChildren();
+  for (const point of response.points) {
+    const row = body.insertRow();
+    row.dataset.status = point.status;
+    for (const [, format] of SWEEP_COLUMNS) row.insertCell().textContent = format(point);
+    if (point.no_equilibrium) row.title = point.no_equilibrium.reason;
+  }
+  const fastest = response.points.findLastIndex((p) => p.status === "equilibrium");
+  updateShapeChoices(fastest >= 0 ? `sweep-${fastest}` : undefined);
+  $("download-sweep").disabled = false;
+  $("download-json").disabled = false;
+}
+
+// ------------------------------------------------------------------------------ figure 14.5
+
+function shapeChoices() {
+  const choices = [];
+  if (state.solve) {
+    choices.push({ value: "solve", label: `Solve: ${state.solve.request.flight.velocity} m/s`, wing: state.solve.request.wing, equilibrium: state.solve.response, velocity: state.solve.request.flight.velocity });
+  }
+  if (state.sweep) {
+    state.sweep.response.points.forEach((point, i) => {
+      if (point.status === "equilibrium") {
+        choices.push({ value: `sweep-${i}`, label: `Sweep: ${f(point.velocity, 2)} m/s`, wing: state.sweep.request.wing, equilibrium: point.equilibrium, velocity: point.velocity });
+      }
+    });
+  }
+  return choices;
+}
+
+/** `prefer`: the choice to show now (after a solve, its answer; after a sweep, its fastest
+ * equilibrium, as the study shows it); else the current one is kept. */
+function updateShapeChoices(prefer) {
+  const select = $("shape-of");
+  const previous = prefer ?? select.value;
+  const choices = shapeChoices();
+  select.replaceChildren(
+    ...choices.map((choice) => {
+      const option = document.createElement("option");
+      option.value = choice.value;
+      option.textContent = choice.label;
+      return option;
+    }),
+  );
+  if (choices.some((c) => c.value === previous)) select.value = previous;
+  drawShape();
+}
+
+function drawShape() {
+  const choice = shapeChoices().find((c) => c.value === $("shape-of").value);
+  if (!choice) return;
+  const raw = Number($("shape-scale").value);
+  const scale = Number.isFinite(raw) && raw > 0 ? raw : 1;
+  figures.drawShape(choice.wing, choice.equilibrium, `${f(choice.velocity, 2)} m/s`, scale);
+  const t = choice.equilibrium.totals;
+  $("shape-note").textContent =
+    `At ${f(choice.velocity, 2)} m/s: tip twist ${signed(t.tip_twist, 2)} deg, tip heave ${f(t.tip_heave, 3)} m` +
+    (scale === 1 ? " (true scale)." : `, drawn ${scale} times larger.`);
+}
+
+// --------------------------------------------------------------------------------- downloads
+
+function downloadResults() {
+  downloadJSON("flexwing-results.json", {
+    solve: state.solve && {
+      request: state.solve.request,
+      response: state.solve.response,
+      rigid: { note: state.solve.rigidNote, panels: state.solve.rigid.panels },
+    },
+    sweep: state.sweep,
+  });
+}
+
+function downloadStations() {
+  const s = state.solve.response.stations;
+  const columns = [
+    ["y [m]", s.y],
+    ["heave [m]", s.heave],
+    ["slope [-]", s.slope],
+    ["twist [deg]", s.twist],
+    ["shear [N]", s.shear],
+    ["bending_moment [N m]", s.bending_moment],
+    ["torque [N m]", s.torque],
+  ];
+  downloadText("flexwing-stations.csv", "text/csv", toCSV(columns));
+}
+
+function downloadPanels() {
+  const p = state.solve.response.panels;
+  const columns = [
+    ["y [m]", p.y],
+    ["lift [N]", p.lift],
+    ["lift_per_span [N/m]", p.lift_per_span],
+    ["torque [N m]", p.torque],
+  ];
+  if (state.solve.rigid) {
+    columns.push(["rigid_y [m]", state.solve.rigid.panels.y], ["rigid_lift_per_span [N/m]", state.solve.rigid.panels.lift_per_span]);
+  }
+  downloadText("flexwing-panels.csv", "text/csv", toCSV(columns));
+}
+
+function downloadSweep() {
+  const { response } = state.sweep;
+  const kind = response.divergence.fit.amplification;
+  const points = response.points;
+  const total = (key) => points.map((p) => p.equilibrium?.totals[key] ?? null);
+  const columns = [
+    ["velocity [m/s]", points.map((p) => p.velocity)],
+    ["status", points.map((p) => p.status)],
+    ["lift [N]", total("lift")],
+    ["rigid_lift [N]", total("rigid_lift")],
+    ["lift_amplification [-]", total("lift_amplification")],
+    [`amplification_${kind} [-]`, points.map((p) => (p.equilibrium ? figures.amplification(p.equilibrium, kind) : null))],
+    ["tip_twist [deg]", total("tip_twist")],
+    ["tip_heave [m]", total("tip_heave")],
+    ["root_bending_moment [N m]", total("root_bending_moment")],
+    ["margin [-]", points.map((p) => p.equilibrium?.stability.margin ?? null)],
+    ["reason", points.map((p) => p.no_equilibrium?.reason ?? null)],
+  ];
+  downloadText("flexwing-sweep.csv", "text/csv", toCSV(columns));
+}
+
+// ---------------------------------------------------------------------------------- JSON I/O
+
+function jsonError(text) {
+  $("json-error").textContent = text;
+  $("json-error").hidden = !text;
+}
+
+function setControl(key, v) {
+  if (v !== undefined && v !== null && state.controls[key]) state.controls[key].control.value = String(v);
+}
+
+function loadJSON(text) {
+  jsonError("");
+  let body;
+  try {
+    body = JSON.parse(text);
+  } catch (error) {
+    jsonError(`Not valid JSON: ${error.message}`);
+    return;
+  }
+  const w = body?.wing ?? (Array.isArray(body?.y) ? body : null);
+  if (!w || !Array.isArray(w.y)) {
+    jsonError('No wing found: expected {"wing": {"y": [...], "chord": [...], ...}, "flight": {...}} or a wing.');
+    return;
+  }
+  const known = new Set([...table.columns.map((c) => c.key), ...state.extra.map((e) => e.field.path?.replace("wing.", ""))]);
+  state.passThrough = Object.fromEntries(Object.entries(w).filter(([k]) => !known.has(k)));
+  for (const { field, control } of state.extra) {
+    const v = field.path?.split(".").reduce((node, part) => node?.[part], { wing: w, flight: body.flight });
+    if (v !== undefined) control.value = String(v);
+  }
+  setMode("table");
+  table.fill(w);
+  updateCount();
+  const fl = body.flight ?? {};
+  setControl("velocity", fl.velocity);
+  setControl("alpha", fl.alpha);
+  setControl("density", fl.density);
+  const v = body.velocities;
+  if (Array.isArray(v) && v.length) {
+    setControl("sweep_start", Math.min(...v));
+    setControl("sweep_stop", Math.max(...v));
+    setControl("sweep_count", v.length);
+  } else if (v) {
+    setControl("sweep_start", v.start);
+    setControl("sweep_stop", v.stop);
+    setControl("sweep_count", v.count);
+  }
+  const extra = Object.keys(state.passThrough);
+  $("planform-note").textContent =
+    `Loaded a wing of ${table.rows} stations into the station table.` +
+    (extra.length ? ` Kept as given (the editor has no field for them): ${extra.join(", ")}.` : "");
+}
+
+// ------------------------------------------------------------------------------------ wiring
+
+async function exportFigure(button) {
+  const figure = $(button.dataset.figure);
+  const blob = await figures.figurePNG(figure);
+  if (blob) downloadBlob(`flexwing-${button.dataset.figure.replace("fig-", "figure-")}.png`, blob);
+}
+
+function wire() {
+  $("solve-form").addEventListener("submit", (event) => {
+    event.preventDefault();
+    runSolve();
+  });
+  $("sweep-form").addEventListener("submit", (event) => {
+    event.preventDefault();
+    runSweep();
+  });
+  $("cancel").addEventListener("click", () => state.abort?.abort());
+  $("planform").addEventListener("input", () => state.mode === "planform" && regenerate());
+  $("planform").addEventListener("change", () => state.mode === "planform" && regenerate());
+  for (const radio of document.querySelectorAll('input[name="mode"]')) {
+    radio.addEventListener("change", () => setMode(radio.value));
+  }
+  $("add-row").addEventListener("click", () => {
+    setMode("table");
+    table.addRow();
+    updateCount();
+  });
+  $("remove-row").addEventListener("click", () => {
+    setMode("table");
+    table.removeRow();
+    updateCount();
+  });
+  $("json-load").addEventListener("click", () => loadJSON($("json-text").value));
+  $("json-file").addEventListener("change", async () => {
+    const file = $("json-file").files[0];
+    if (file) loadJSON(await file.text());
+  });
+  $("json-download").addEventListener("click", () => downloadJSON("flexwing-wing.json", solveRequest()));
+  $("download-json").addEventListener("click", downloadResults);
+  $("download-stations").addEventListener("click", downloadStations);
+  $("download-panels").addEventListener("click", downloadPanels);
+  $("download-sweep").addEventListener("click", downloadSweep);
+  for (const button of document.querySelectorAll(".export-png")) {
+    button.addEventListener("click", () => exportFigure(button));
+  }
+  $("shape-of").addEventListener("change", drawShape);
+  $("shape-scale").addEventListener("input", drawShape);
+}
+
+async function main() {
+  render(PLANFORM_FIELDS, $("planform"));
+  render(FLIGHT_FIELDS, $("flight"));
+  render(SWEEP_FIELDS, $("sweep"), { form: "sweep-form" });
+  for (const key of ["2", "3", "4", "5"]) figures.clear(`14.${key}`);
+  wire();
+  setMode("planform");
+  await addOptionalFields();
+  // The study's wing, solved and swept as the page opens.
+  await runSolve();
+  await runSweep();
+  window.__flexwing.ready = true;
+  document.body.dataset.ready = "true";
+}
+
+main();

@@ -1,0 +1,33 @@
+"""What the numerics need from the model at one state, without CasADi or threads."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Evaluation"]
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """r = r0 + q r1 and J = J0 + q J1 at one state x; arrays owned by the caller.
+
+    r0, r1: (n,) residual parts; jacobian0, jacobian1: (n, n) their exact Jacobians in x.
+    The residual is affine in the dynamic pressure q [Pa], so one evaluation serves every q.
+    """
+
+    r0: np.ndarray
+    r1: np.ndarray
+    jacobian0: np.ndarray
+    jacobian1: np.ndarray
+
+    def residual(self, q: float) -> np.ndarray:
+        return self.r0 + q * self.r1
+
+    def jacobian(self, q: float) -> np.ndarray:
+        return self.jacobian0 + q * self.jacobian1
+
+    @property
+    def nbytes(self) -> int:
+        return self.r0.nbytes + self.r1.nbytes + self.jacobian0.nbytes + self.jacobian1.nbytes

@@ -1,0 +1,215 @@
+"""Natural-parameter path following: from an equilibrium at q0 to the one at q on the same branch.
+
+The equilibrium branch from the jig shape rises in q until its fold, so below the fold each q has
+exactly one point on it, and following q is enough to stay on it. Each step predicts along the
+branch tangent dx/dq = -J^{-1} r1 (J = J0 + q J1 at the current point, whose Jacobians are
+already known) and corrects with Newton at the new q, its first iteration on the current point's
+Jacobians re-targeted to the new q (free, the residual is affine in q).
+
+A step is accepted only if its corrector behaves like Newton close to a root: the first
+correction small against the predicted move, every later one contracting (measured in the scaled
+coordinates of `solver.continuation`). Then the landing point lies close to the prediction, on
+the branch the prediction followed; Newton from a poor prediction that wanders (towards a
+nose-down branch, or the other side of a bistable wing) is stopped at its first large or
+non-contracting correction, and the step is halved and tried again. A step's predicted move is
+also capped. Steps shrink approaching a fold, where the predictor's error grows without bound;
+below `min_step` times the wing's pressure scale the path stops, and the caller decides with the
+branch's pseudo-arclength continuation.
+
+Everything here is a deterministic function of the start and the target: the same request gives
+the same sequence of steps, hence the same bits, whatever was asked before.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.continuation import scaled_norm
+from solver.evaluation import Evaluation
+
+__all__ = ["PathResult", "PathSettings", "follow"]
+
+
+@dataclass(frozen=True)
+class PathSettings:
+    """Step control, in the scaled coordinates of `solver.continuation`.
+
+    max_corrector_iterations: Newton iterations of one step before it is rejected.
+    max_first_correction: largest first Newton correction, relative to the predicted move.
+    max_contraction: largest ratio of consecutive Newton corrections: Newton that does not
+        contract at least this fast is not converging to the point the step predicted.
+    correction_floor: corrections this small are accepted whatever the move (round-off and the
+        residual tolerance, in scaled units).
+    max_move: largest predicted move of one step; a longer step is shortened to it.
+    min_step: smallest step [-], relative to the wing's pressure scale (the scale of q in the
+        scaled coordinates), before the path stops.
+    max_steps: accepted and rejected steps before the path stops.
+    """
+
+    max_corrector_iterations: int = 8
+    max_first_correction: float = 0.8
+    max_contraction: float = 0.5
+    correction_floor: float = 1e-7
+    max_move: float = 0.5
+    min_step: float = 1e-4
+    max_steps: int = 80
+
+
+@dataclass(frozen=True)
+class PathResult:
+    """Where the path ended.
+
+    x: (n,) state at `dynamic_pressure` [Pa]; evaluation: r0, r1 at x with Jacobians at x or at
+    Newton's last iterate (one step of ~sqrt(tolerance) away). reached: x is the equilibrium at
+    the requested q. iterations: Newton iterations over every step; steps: accepted steps.
+    """
+
+    x: np.ndarray
+    dynamic_pressure: float
+    evaluation: Evaluation
+    reached: bool
+    iterations: int
+    residual_norm: float
+    steps: int
+    reason: str
+
+
+def follow(
+    evaluate: Callable[[np.ndarray], Evaluation],
+    residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    start: np.ndarray,
+    start_pressure: float,
+    start_evaluation: Evaluation,
+    q: float,
+    scale: np.ndarray,
+    tolerance: float,
+    settings: PathSettings | None = None,
+) -> PathResult:
+    """Follow the branch through (start, start_pressure) to q [Pa].
+
+    `start` must be an equilibrium at `start_pressure` (to the tolerance) with
+    `start_evaluation` its exact evaluation; `scale` (n + 1,) the scaled coordinates.
+    """
+    settings = settings or PathSettings()
+    x, q_now, evaluation = start, start_pressure, start_evaluation
+    smallest = settings.min_step * scale[-1]  # [Pa]
+    step = q - start_pressure
+    iterations = steps = attempts = 0
+    norm = float(np.max(np.abs(evaluation.residual(q_now))))
+    tangent = _tangent(evaluation, q_now)
+    while True:
+        remaining = q - q_now
+        if remaining == 0 and norm <= tolerance:
+            return PathResult(x, q_now, evaluation, True, iterations, norm, steps, "reached")
+        if attempts >= settings.max_steps or tangent is None:
+            reason = "too many steps" if tangent is not None else "singular Jacobian"
+            return PathResult(x, q_now, evaluation, False, iterations, norm, steps, reason)
+        attempts += 1
+        dq = remaining if abs(step) >= abs(remaining) else step
+        speed = scaled_norm(tangent, scale)  # predicted move per pascal
+        if abs(dq) * speed > settings.max_move:
+            dq = dq * settings.max_move / (abs(dq) * speed)
+        landed = _step(
+            evaluate, residual, x, tangent, evaluation, q_now + dq, dq, scale, tolerance, settings
+        )
+        iterations += landed.iterations
+        if landed.accepted:
+            x, q_now, evaluation = landed.x, q_now + dq, landed.evaluation
+            norm = landed.residual_norm
+            tangent = _tangent(evaluation, q_now)
+            steps += 1
+            step = dq * (2.0 if landed.iterations <= 3 else 1.0)
+            continue
+        step = dq / 2
+        if abs(step) < smallest:
+            return PathResult(
+                x,
+                q_now,
+                evaluation,
+                False,
+                iterations,
+                norm,
+                steps,
+                f"path stalled at q = {q_now:.6g} Pa ({landed.reason})",
+            )
+
+
+def _tangent(evaluation: Evaluation, q: float) -> np.ndarray | None:
+    """dx/dq = -J^{-1} r1 along the branch, or None where J is singular."""
+    try:
+        return np.linalg.solve(evaluation.jacobian(q), -evaluation.r1)
+    except np.linalg.LinAlgError:
+        return None
+
+
+@dataclass(frozen=True)
+class _Landing:
+    accepted: bool
+    x: np.ndarray
+    evaluation: Evaluation
+    iterations: int
+    residual_norm: float
+    reason: str
+
+
+def _step(
+    evaluate: Callable[[np.ndarray], Evaluation],
+    residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    x: np.ndarray,
+    tangent: np.ndarray,
+    evaluation: Evaluation,
+    q_next: float,
+    dq: float,
+    scale: np.ndarray,
+    tolerance: float,
+    settings: PathSettings,
+) -> _Landing:
+    """Predict along the tangent over dq, correct with Newton, judge every correction.
+
+    The corrector is plain Newton (no damping: a step that needs damping is too long). Its first
+    correction must be small against the predicted move and each later one must contract: then
+    the landing point lies within first / (1 - contraction) of the prediction, on the branch the
+    prediction followed (Deuflhard's monotonicity test for continuation correctors).
+    """
+    predicted = x + dq * tangent
+    move = scaled_norm(predicted - x, scale)
+    r0, r1 = residual(predicted)
+    # The current point's Jacobians, re-targeted to q_next, serve the first correction for free.
+    current = Evaluation(r0, r1, evaluation.jacobian0, evaluation.jacobian1)
+    point = predicted
+    previous = np.inf
+    for iteration in range(settings.max_corrector_iterations + 1):
+        r = current.residual(q_next)
+        if not np.all(np.isfinite(r)):
+            return _Landing(False, x, evaluation, iteration, np.inf, "non-finite residual")
+        norm = float(np.max(np.abs(r)))
+        if norm <= tolerance:
+            return _Landing(True, point, current, iteration, norm, "accepted")
+        if iteration == settings.max_corrector_iterations:
+            break
+        try:
+            correction = np.linalg.solve(current.jacobian(q_next), r)
+        except np.linalg.LinAlgError:
+            return _Landing(False, x, evaluation, iteration, np.inf, "singular Jacobian")
+        size = scaled_norm(correction, scale)
+        limit = (
+            settings.max_first_correction * move
+            if iteration == 0
+            else settings.max_contraction * previous
+        )
+        if size > limit + settings.correction_floor:
+            reason = (
+                f"first correction {size:.3g} against a predicted move of {move:.3g}"
+                if iteration == 0
+                else f"Newton does not contract ({size:.3g} after {previous:.3g})"
+            )
+            return _Landing(False, x, evaluation, iteration + 1, np.inf, reason)
+        previous = size
+        point = point - correction
+        current = evaluate(point)
+    return _Landing(
+        False, x, evaluation, settings.max_corrector_iterations, np.inf, "iteration limit"
+    )

@@ -1,0 +1,280 @@
+"""What the solver returns: every result type, defined once.
+
+The web service's response models are derived from these dataclasses (`app.schemas`), so a field
+added here appears in the API with its unit and description, and none can be dropped silently.
+Each field's metadata carries its unit and a one-line description (`quantity`); fields marked
+``internal`` (solver state for warm starts and continuation) stay in Python.
+
+Arrays over stations are (N,), over right-half panels (N - 1,), root to tip. Totals are for
+both halves of the wing.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+from solver.evaluation import Evaluation
+from solver.inputs import FlightCondition, Wing
+
+__all__ = [
+    "DivergenceSummary",
+    "Equilibrium",
+    "FitDivergence",
+    "Fold",
+    "LinearDivergence",
+    "Panels",
+    "PointFailure",
+    "SolveInfo",
+    "Stability",
+    "Stations",
+    "SweepInfo",
+    "SweepPoint",
+    "SweepResult",
+    "Totals",
+    "quantity",
+]
+
+
+def quantity(unit: str, description: str, **kwargs: Any) -> Any:
+    """A dataclass field documented with its unit ("-" for dimensionless, "" for none)."""
+    return field(metadata={"unit": unit, "description": description}, **kwargs)
+
+
+def internal(**kwargs: Any) -> Any:
+    """A field kept in Python only: never sent by the web service."""
+    return field(metadata={"internal": True}, **kwargs)
+
+
+@dataclass(frozen=True, eq=False)
+class Stations:
+    """Deformation and internal loads at the N structural stations, root to tip."""
+
+    y: np.ndarray = quantity("m", "station positions")
+    heave: np.ndarray = quantity("m", "vertical displacement, positive up")
+    slope: np.ndarray = quantity("-", "heave slope du/dy")
+    twist: np.ndarray = quantity("deg", "twist about the elastic axis, nose-up > 0")
+    shear: np.ndarray = quantity("N", "vertical shear force carried at the station")
+    bending_moment: np.ndarray = quantity("N m", "flapwise bending moment")
+    torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+
+
+@dataclass(frozen=True, eq=False)
+class Panels:
+    """Aerodynamic loads on the N - 1 right-half panels (strips between stations), root to tip."""
+
+    y: np.ndarray = quantity("m", "spanwise load location (deformed bound vortex)")
+    lift: np.ndarray = quantity("N", "vertical force on the panel")
+    lift_per_span: np.ndarray = quantity("N/m", "vertical force per jig strip width")
+    torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+    rigid_lift_per_span: np.ndarray = quantity(
+        "N/m", "the rigid jig's vertical force per strip width at the same condition"
+    )
+
+
+@dataclass(frozen=True)
+class Totals:
+    """Whole-wing results (both halves)."""
+
+    lift: float = quantity("N", "lift, perpendicular to the freestream")
+    induced_drag: float = quantity("N", "induced drag, along the freestream (near field)")
+    CL: float = quantity("-", "lift coefficient on the jig planform area")
+    CDi: float = quantity("-", "induced-drag coefficient on the jig planform area")
+    CL_deformed_area: float = quantity(
+        "-",
+        "lift coefficient on the deformed wing's planform area, the convention of AeroSandbox "
+        "and of the design study",
+    )
+    reference_area: float = quantity("m^2", "jig planform area, both halves")
+    deformed_area: float = quantity("m^2", "deformed planform area, both halves")
+    rigid_lift: float = quantity("N", "lift of the rigid jig shape at the same condition")
+    lift_amplification: float | None = quantity(
+        "-",
+        "lift / rigid_lift; null when the rigid wing carries no lift (alpha = 0 on an "
+        "uncambered, untwisted wing, or within 1e-10 rad of it)",
+    )
+    tip_heave: float = quantity("m", "heave at the tip")
+    tip_twist: float = quantity("deg", "twist at the tip")
+    root_bending_moment: float = quantity("N m", "bending moment at the root")
+    root_torque: float = quantity("N m", "torque at the root")
+
+
+@dataclass(frozen=True)
+class Stability:
+    """Static aeroelastic stability of this equilibrium, and the wing's linear divergence."""
+
+    stable: bool = quantity("", "the equilibrium is statically stable: local pressure > q")
+    margin: float = quantity(
+        "-",
+        "q / local divergence pressure at this equilibrium; 1 at instability, 0 when the "
+        "deformed wing cannot diverge",
+    )
+    local_divergence_pressure: float | None = quantity(
+        "Pa",
+        "divergence dynamic pressure linearised at this equilibrium (smallest positive real "
+        "lambda with J0 + lambda J1 singular), or null when none is meaningfully positive",
+    )
+    divergence_dynamic_pressure: float | None = quantity(
+        "Pa", "classical linear divergence at the unloaded jig (alpha = 0), or null if none"
+    )
+    divergence_velocity: float | None = quantity(
+        "m/s", "airspeed of that divergence at this density, or null"
+    )
+    branch: Literal["jig", "other"] = quantity(
+        "",
+        "jig: the equilibrium on the branch from the jig shape (every answer without an "
+        "initial guess); other: a different equilibrium reached from the caller's initial guess",
+    )
+
+
+@dataclass(frozen=True)
+class SolveInfo:
+    """How the answer was obtained."""
+
+    iterations: int = quantity("-", "Newton iterations, over every step of the path")
+    residual_norm: float = quantity("mixed units", "max-norm of the final residual")
+    warm_start: bool = quantity(
+        "", "the path started from a supplied state (a hint or an initial guess), not the jig"
+    )
+    seconds: float = quantity("s", "solver time")
+
+
+@dataclass(frozen=True)
+class Fold:
+    """The fold of the equilibrium branch from the jig shape: past it there is no equilibrium."""
+
+    velocity: float | None = quantity("m/s", "airspeed at the fold, or null")
+    dynamic_pressure: float | None = quantity("Pa", "dynamic pressure at the fold, or null")
+    tip_twist: float | None = quantity("deg", "tip twist at the fold")
+    lift: float | None = quantity("N", "lift at the fold")
+    searched_to_velocity: float = quantity("m/s", "how far the branch was followed")
+    reason: str | None = quantity("", "why the values are null, else null", default=None)
+    tip_heave: float | None = quantity("m", "tip heave at the fold", default=None)
+    evaluations: int = quantity(
+        "-", "model evaluations the continuation spent to this speed", default=0
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class Equilibrium:
+    """A converged, statically judged equilibrium of one wing at one flight condition."""
+
+    wing: Wing = internal()
+    flight: FlightCondition = internal()
+    state: np.ndarray = internal()  # (n,) unknowns, see solver.layout
+    evaluation: Evaluation = internal()  # r0, r1, J0, J1 at `state`
+    stations: Stations = quantity("", "deformation and internal loads at the stations")
+    panels: Panels = quantity("", "aerodynamic loads on the panels")
+    totals: Totals = quantity("", "whole-wing results")
+    stability: Stability = quantity("", "static stability and divergence")
+    solver: SolveInfo = quantity("", "how the answer was obtained")
+    fold: Fold | None = quantity(
+        "", "the fold of the branch from the jig, when options.find_fold asked", default=None
+    )
+
+    # Shorthands for Python users; the data lives in the groups above.
+    @property
+    def dynamic_pressure(self) -> float:
+        return self.flight.dynamic_pressure
+
+    @property
+    def lift(self) -> float:
+        return self.totals.lift
+
+    @property
+    def tip_twist(self) -> float:
+        return self.totals.tip_twist
+
+    @property
+    def tip_heave(self) -> float:
+        return self.totals.tip_heave
+
+
+@dataclass(frozen=True)
+class LinearDivergence:
+    """Classical linear divergence at the unloaded jig (alpha = 0)."""
+
+    dynamic_pressure: float | None = quantity("Pa", "divergence dynamic pressure, or null")
+    velocity: float | None = quantity("m/s", "at the sweep's density, or null")
+    reason: str | None = quantity("", "why the values are null, else null", default=None)
+
+
+@dataclass(frozen=True)
+class FitDivergence:
+    """The design study's estimate: 1/A = intercept + slope q fitted over stable sweep points."""
+
+    slope: float | None = quantity("1/Pa", "slope of 1/A against q")
+    intercept: float | None = quantity("-", "intercept (single-mode theory: 1)")
+    dynamic_pressure: float | None = quantity("Pa", "where 1/A reaches 0")
+    velocity: float | None = quantity("m/s", "at the sweep's density")
+    reason: str | None = quantity("", "why the values are null, else null", default=None)
+    amplification: Literal["CL", "lift"] = quantity(
+        "",
+        "what A is: 'CL' (the study's: CL on the deformed area over the rigid CL on the jig "
+        "area) or 'lift' (L / L_rigid)",
+        default="CL",
+    )
+    points_used: int = quantity("-", "stable equilibria in the fit", default=0)
+
+
+@dataclass(frozen=True)
+class DivergenceSummary:
+    """Three torsional-divergence estimates that check each other."""
+
+    linear: LinearDivergence = quantity("", "eigenvalue at the unloaded jig")
+    fit: FitDivergence = quantity("", "the study's 1/A fit over the sweep")
+    fold: Fold = quantity("", "where the branch from the jig ends")
+
+    @property
+    def limit_velocity(self) -> float | None:
+        """[m/s] the speed users should see first: the fold, where equilibria end."""
+        return self.fold.velocity
+
+
+@dataclass(frozen=True)
+class PointFailure:
+    """Why a sweep point has no equilibrium."""
+
+    reason: str = quantity("", "what the solver reported")
+    fold_velocity: float | None = quantity("m/s", "where the equilibrium branch ends, when known")
+
+
+@dataclass(frozen=True, eq=False)
+class SweepPoint:
+    """One requested airspeed: an equilibrium, or the typed reason there is none."""
+
+    error: Exception | None = internal()  # the SolverError, for Python callers
+    velocity: float = quantity("m/s", "requested airspeed")
+    status: Literal["equilibrium", "no_equilibrium", "not_converged"] = quantity(
+        "",
+        "equilibrium: `equilibrium` holds the result; no_equilibrium: none on the branch from "
+        "the jig (beyond its fold, or unstable there); not_converged: the solver failed. "
+        "Both failures fill `no_equilibrium`",
+    )
+    equilibrium: Equilibrium | None = quantity("", "the equilibrium, as /solve returns it")
+    no_equilibrium: PointFailure | None = quantity("", "why there is none")
+
+
+@dataclass(frozen=True)
+class SweepInfo:
+    seconds: float = quantity("s", "solver time")
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult:
+    """One point per requested airspeed, in request order, and the divergence estimates."""
+
+    points: list[SweepPoint] = quantity("", "one per requested airspeed, in request order")
+    divergence: DivergenceSummary = quantity("", "three torsional-divergence estimates")
+    solver: SweepInfo = quantity("", "how the answer was obtained")
+
+    @property
+    def equilibria(self) -> list[Equilibrium]:
+        return [point.equilibrium for point in self.points if point.equilibrium is not None]
+
+
+def finite_or_none(value: float | None) -> float | None:
+    return None if value is None or not math.isfinite(value) else float(value)

@@ -1,0 +1,191 @@
+"""The static aeroelastic equilibrium of one wing at one flight condition: the policy.
+
+The answer is the equilibrium on the branch from the jig shape at the requested dynamic
+pressure, if that equilibrium exists and is statically stable; otherwise a typed error. It is
+found by following the branch in q from the rigid jig (`solver.path`), or from a `hint` (an
+earlier answer for the same wing and alpha) when one is given, and when that path does not end in
+a stable equilibrium the branch's pseudo-arclength continuation decides (`solver.recovery`).
+
+Without a hint or an initial guess, every step is a deterministic function of the wing, the
+flight condition and the options: the same request gives the same bits in a fresh process and
+after any number of other requests. A hint only shortens the path: the answer agrees with the
+cold one to the residual tolerance times the problem's conditioning (~1e-9 relative on the
+study's wing). A caller's `initial_guess` may reach another equilibrium than the jig branch's;
+it is then returned with `stability.branch == "other"`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import time
+from collections.abc import Iterator
+
+import numpy as np
+
+from solver.branch import fold, pressure_scale, search_velocity_limit
+from solver.continuation import scaled_norm
+from solver.equilibrium import judge
+from solver.errors import ConvergenceError, SolverError
+from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.jig import jig
+from solver.newton import newton
+from solver.path import PathSettings, follow
+from solver.recovery import settle
+from solver.results import Equilibrium
+from solver.system import CoupledSystem
+
+__all__ = ["SAME_EQUILIBRIUM", "numerical_failures_as", "solve"]
+
+# Two converged states closer than this (scaled coordinates, `solver.continuation`) are the same
+# equilibrium: the residual tolerance times the conditioning is far below it, and distinct
+# equilibria of a wing lie far above it.
+SAME_EQUILIBRIUM = 1e-6
+
+
+def solve(
+    wing: Wing,
+    flight: FlightCondition,
+    initial_guess: np.ndarray | None = None,
+    options: SolverOptions | None = None,
+    *,
+    hint: Equilibrium | None = None,
+) -> Equilibrium:
+    """The static aeroelastic equilibrium of `wing` at `flight`.
+
+    initial_guess: (n,) a state to start Newton from (unknowns as in `solver.layout`). If Newton
+        converges from it to an equilibrium other than the jig branch's, that equilibrium is
+        returned, flagged `stability.branch == "other"` (and `stable` says whether it is); if it
+        reaches the jig branch's, or fails, the answer is the one without a guess.
+    hint: an earlier answer for the same wing and alpha; it may only save time. Ignored unless it
+        lies on the jig's branch and is stable.
+    Raises `NoEquilibrium` beyond the fold of the branch (or where its equilibrium is unstable),
+    `ConvergenceError` when no answer could be reached.
+    """
+    started = time.perf_counter()
+    options = options or SolverOptions()
+    if hint is not None and initial_guess is not None:
+        raise ValueError("give an initial_guess or a hint, not both")
+    system = CoupledSystem(wing, flight.alpha)
+    with numerical_failures_as(flight.velocity):
+        if initial_guess is not None:
+            equilibrium = _from_initial_guess(system, flight, initial_guess, options, started)
+        else:
+            equilibrium = _on_branch(system, flight, options, started, _usable(system, hint))
+        if options.find_fold:
+            limit = search_velocity_limit(system, flight.density, flight.velocity)
+            equilibrium = dataclasses.replace(equilibrium, fold=fold(system, flight.density, limit))
+    return equilibrium
+
+
+@contextlib.contextmanager
+def numerical_failures_as(velocity: float) -> Iterator[None]:
+    """Linear algebra that breaks down on a degenerate wing (a singular rigid-wing system, an
+    eigenvalue solve that does not converge) ends the solve with a typed ConvergenceError: the
+    wing is valid input, the numbers could not be computed."""
+    try:
+        yield
+    except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError) as error:
+        raise ConvergenceError(
+            velocity, 0, float("nan"), f"the linear algebra broke down ({error})"
+        ) from error
+
+
+def _usable(system: CoupledSystem, hint: Equilibrium | None) -> Equilibrium | None:
+    """The hint if it is a stable jig-branch answer of this wing at this alpha, else None."""
+    if hint is None:
+        return None
+    same = hint.wing.key == system.wing.key and hint.flight.alpha + 0.0 == system.alpha + 0.0
+    on_branch = hint.stability.branch == "jig" and hint.stability.stable
+    return hint if same and on_branch else None
+
+
+def _path_settings(options: SolverOptions) -> PathSettings:
+    return PathSettings(max_corrector_iterations=min(options.max_iterations, 8))
+
+
+def _on_branch(
+    system: CoupledSystem,
+    flight: FlightCondition,
+    options: SolverOptions,
+    started: float,
+    hint: Equilibrium | None,
+) -> Equilibrium:
+    """Follow the branch from the jig (or the hint) to q; the branch decides if that fails."""
+    q = flight.dynamic_pressure
+    if hint is not None:
+        start, start_q, start_evaluation = hint.state, hint.dynamic_pressure, hint.evaluation
+    else:
+        rigid = jig(system)
+        start, start_q, start_evaluation = rigid.state, 0.0, rigid.evaluation
+    path = follow(
+        system.evaluate,
+        system.residual,
+        start,
+        start_q,
+        start_evaluation,
+        q,
+        system.scale(pressure_scale(system)),
+        options.tolerance,
+        _path_settings(options),
+    )
+    if path.reached:
+        equilibrium = judge(
+            system,
+            flight,
+            path.x,
+            path.evaluation,
+            iterations=path.iterations,
+            residual_norm=path.residual_norm,
+            warm_start=hint is not None,
+            started=started,
+        )
+        if equilibrium.stability.stable:
+            return equilibrium
+    return settle(system, flight, options, path.iterations, started)
+
+
+def _from_initial_guess(
+    system: CoupledSystem,
+    flight: FlightCondition,
+    initial_guess: np.ndarray,
+    options: SolverOptions,
+    started: float,
+) -> Equilibrium:
+    """Newton from the caller's state; the jig branch's answer unless it reached another."""
+    n = system.layout.n_unknowns
+    guess = np.asarray(initial_guess, dtype=float)
+    if guess.shape != (n,) or not np.all(np.isfinite(guess)):
+        raise ValueError(f"initial_guess must be a finite state of shape ({n},)")
+    q = flight.dynamic_pressure
+    result = newton(
+        system.evaluate,
+        system.residual,
+        guess,
+        q,
+        options.tolerance,
+        options.max_iterations,
+    )
+    try:
+        on_branch: Equilibrium | None = _on_branch(system, flight, options, started, None)
+    except SolverError:
+        if not result.converged:
+            raise
+        on_branch = None
+    if not result.converged:
+        assert on_branch is not None
+        return on_branch
+    scale = system.scale(pressure_scale(system))
+    if on_branch is not None and scaled_norm(result.x - on_branch.state, scale) <= SAME_EQUILIBRIUM:
+        return on_branch
+    return judge(
+        system,
+        flight,
+        result.x,
+        result.evaluation,
+        iterations=result.iterations,
+        residual_norm=result.residual_norm,
+        warm_start=True,
+        started=started,
+        branch="other",
+    )

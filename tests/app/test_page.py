@@ -1,0 +1,443 @@
+"""The page (GET /) and the API documentation (GET /docs) in a real browser.
+
+Headless Chromium (Debian's /usr/bin/chromium, which .ci/run installs) is driven by Playwright
+against the session's real server. What the figures drew is read from the page's own record of
+it (window.__flexwing.figures: each series as x/y arrays, each marked value), never from pixels.
+Every request the browser makes is recorded: none may leave the app's origin. Both pages are
+served with a strict Content-Security-Policy (no eval), so the waits below pass functions, not
+strings, to Playwright (a string predicate is evaluated with eval, which the policy refuses).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlsplit
+
+import httpx
+import pytest
+from playwright.sync_api import Browser, ConsoleMessage, Page, Request, sync_playwright
+
+from tests.app.conftest import Server
+
+CHROMIUM = Path("/usr/bin/chromium")
+# Without the background-networking flags Chromium's own connections are refused on this machine
+# (and would count as requests outside the app's origin).
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+DESKTOP = {"width": 1280, "height": 800}
+PHONE = {"width": 390, "height": 844}
+TIMEOUT_MS = 30_000
+
+pytestmark = [
+    pytest.mark.browser,
+    pytest.mark.skipif(
+        not CHROMIUM.exists(),
+        reason="/usr/bin/chromium is absent: install Debian's chromium package (.ci/run does)",
+    ),
+]
+
+
+@dataclass
+class Visit:
+    """A browser tab on the server, with everything it logged and requested."""
+
+    page: Page
+    origin: str
+    requests: list[str] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
+
+    def outside(self) -> list[str]:
+        """Requests to anywhere but the app's origin (data: URLs load nothing)."""
+        return [
+            url
+            for url in self.requests
+            if not url.startswith("data:") and _origin(url.removeprefix("blob:")) != self.origin
+        ]
+
+    def errors_but(self, status: int) -> list[str]:
+        """The errors logged, less Chromium's own line for each answer of `status` (it logs
+        every 4xx response the page fetched, including the 422 a test provokes)."""
+        expected = (
+            f"console: Failed to load resource: the server responded with a status of {status}"
+        )
+        return [e for e in self.errors if not e.startswith(expected)]
+
+    def ready(self) -> None:
+        """Wait until the page has solved and swept the preloaded wing."""
+        self.page.wait_for_function("() => window.__flexwing && window.__flexwing.ready")
+
+    def runs(self) -> dict[str, int]:
+        return dict(self.page.evaluate("({...window.__flexwing.state.runs})"))
+
+    def figure(self, number: str) -> dict[str, Any]:
+        return dict(self.page.evaluate(f"window.__flexwing.figures['{number}']"))
+
+    def total(self, key: str) -> str:
+        return self.page.inner_text(f'#totals [data-total="{key}"] dd')
+
+    def wait_runs(self, kind: str, before: dict[str, int]) -> None:
+        """Wait until one more run of `kind` ("solve", "sweep" or "failed") has finished."""
+        self.page.wait_for_function(
+            "([kind, n]) => window.__flexwing.state.runs[kind] > n"
+            " && !window.__flexwing.state.busy",
+            arg=[kind, before[kind]],
+        )
+
+
+def _origin(url: str) -> str:
+    parts = urlsplit(url)
+    return f"{parts.scheme}://{parts.netloc}"
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Browser]:
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+        yield browser
+        browser.close()
+
+
+@pytest.fixture
+def visit(browser: Browser, server: Server) -> Iterator[Callable[..., Visit]]:
+    """Open a path of the server in a fresh context (own cache and storage) at a viewport size."""
+    contexts = []
+
+    def open_(path: str = "/", viewport: dict[str, int] = DESKTOP, **wait: Any) -> Visit:
+        context = browser.new_context(viewport=viewport, accept_downloads=True)
+        context.set_default_timeout(TIMEOUT_MS)
+        contexts.append(context)
+        page = context.new_page()
+        tab = Visit(page, server.base_url)
+
+        def console(message: ConsoleMessage) -> None:
+            if message.type == "error":
+                tab.errors.append(f"console: {message.text} at {message.location}")
+
+        def request(r: Request) -> None:
+            tab.requests.append(r.url)
+
+        context.on("request", request)
+        page.on("console", console)
+        page.on("pageerror", lambda error: tab.errors.append(f"page error: {error}"))
+        response = page.goto(server.base_url + path, **wait)
+        assert response is not None and response.status == 200
+        return tab
+
+    yield open_
+    for context in contexts:
+        context.close()
+
+
+def test_page_loads_clean_and_draws_every_figure(visit: Callable[..., Visit]) -> None:
+    tab = visit("/")
+    tab.ready()
+    headers = tab.page.evaluate("fetch('/').then(r => r.headers.get('content-security-policy'))")
+    assert "default-src 'self'" in headers
+    # The study's wing is preloaded, solved and swept as the page opens.
+    assert tab.page.input_value("#f-velocity") == "10"
+    assert tab.page.input_value("#f-alpha") == "5"
+    assert tab.page.input_value("#cell-chord-0") == "1.414213562"
+
+    spanwise = tab.figure("14.2")
+    assert spanwise["state"] == "drawn"
+    for key, n in (("lift_rigid", 29), ("lift_flexible", 29), ("twist", 30), ("heave", 30)):
+        series = spanwise["series"][key]
+        assert len(series["x"]) == len(series["y"]) == n, key
+    rigid, flexible = (
+        spanwise["series"]["lift_rigid"]["y"],
+        spanwise["series"]["lift_flexible"]["y"],
+    )
+    assert all(f > r > 0 for f, r in zip(flexible, rigid, strict=True))  # wash-in: more lift
+    assert spanwise["series"]["twist"]["y"][-1] == pytest.approx(1.708, abs=1e-3)
+    assert "rigid_lift_per_span" in tab.page.inner_text("#rigid-note")
+
+    loads = tab.figure("14.3")
+    assert len(loads["series"]["bending_moment"]["y"]) == len(loads["series"]["torque"]["y"]) == 30
+    assert loads["marks"]["root_bending_moment"] == pytest.approx(325.17, abs=0.01)
+    assert loads["marks"]["root_torque"] == pytest.approx(23.385, abs=1e-3)
+    assert loads["labels"] == ["root: 325 N·m", "root: 23.4 N·m"]
+
+    sweep = tab.figure("14.4")
+    assert len(sweep["series"]["amplification"]["x"]) >= 5
+    assert len(sweep["series"]["amplification_fit"]["x"]) == 300
+    assert sweep["marks"]["fold_velocity"] == pytest.approx(21.44, abs=0.01)
+
+    shape = tab.figure("14.5")
+    for view in ("top", "front", "side"):
+        for which in ("jig", "deformed"):
+            assert len(shape["series"][f"{view}_{which}"]["x"]) > 100, (view, which)
+    assert tab.page.get_attribute("#fig-14-5", "data-state") == "drawn"
+
+    assert tab.errors == []
+    assert tab.outside() == []
+    assert any(url.endswith("/solve") for url in tab.requests)
+
+
+def test_solving_the_preloaded_wing_shows_the_study_numbers(visit: Callable[..., Visit]) -> None:
+    tab = visit("/")
+    tab.ready()
+    before = tab.runs()
+    tab.page.click("#solve-button")
+    tab.wait_runs("solve", before)
+    assert tab.page.inner_text("#totals-title") == "Totals at 10 m/s, alpha 5 deg, 1.225 kg/m^3"
+    assert tab.total("lift") == "304.1 N"
+    assert tab.total("tip_twist") == "+1.71 deg"
+    assert tab.total("rigid_lift") == "259.4 N"
+    assert tab.total("lift_amplification") == "1.173"
+    assert tab.total("root_bending_moment") == "325.2 N·m"
+    assert tab.total("margin") == "0.148 (stable)"
+    assert tab.errors == []
+
+
+def test_a_sweep_draws_the_amplification_curve_and_marks_the_fold(
+    visit: Callable[..., Visit],
+) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.fill("#f-sweep_start", "6")
+    page.fill("#f-sweep_stop", "22")
+    page.fill("#f-sweep_count", "9")
+    # Record the busy state as it changes (a sweep takes ~50 ms: too quick to poll).
+    page.evaluate(
+        """() => {
+        const results = document.getElementById("results");
+        window.__busy = [];
+        new MutationObserver(() => window.__busy.push({
+            busy: results.getAttribute("aria-busy"),
+            progress: !document.getElementById("progress").hidden,
+            sweepDisabled: document.getElementById("sweep-button").disabled,
+        })).observe(results, {attributes: true, attributeFilter: ["aria-busy"]});
+    }"""
+    )
+    before = tab.runs()
+    page.press("#f-sweep_count", "Enter")  # Enter in a sweep field sweeps
+    tab.wait_runs("sweep", before)
+    assert tab.runs()["solve"] == before["solve"]
+    busy = page.evaluate("window.__busy")
+    assert busy[0] == {"busy": "true", "progress": True, "sweepDisabled": True}
+    assert busy[-1]["busy"] is None and not page.is_disabled("#sweep-button")
+
+    figure = tab.figure("14.4")
+    speeds = figure["series"]["amplification"]["x"]
+    assert speeds == [6, 8, 10, 12, 14, 16, 18, 20]
+    amplification = figure["series"]["amplification"]["y"]
+    assert amplification == sorted(amplification) and amplification[0] > 1
+    assert amplification[-1] == pytest.approx(2.40, abs=0.01)  # the study's 2.40 at 20 m/s
+    assert figure["series"]["tip_twist"]["y"][-1] == pytest.approx(13.65, abs=0.01)
+    assert figure["series"]["no_equilibrium"]["x"] == [22]
+    # The fitted law 1/A = intercept + slope q, drawn from 0 to 92 % of its divergence speed.
+    marks = figure["marks"]
+    fit_v, fit_a = (
+        figure["series"]["amplification_fit"]["x"],
+        figure["series"]["amplification_fit"]["y"],
+    )
+    assert fit_v[-1] == pytest.approx(0.92 * marks["fit_velocity"])
+    q = 0.5 * 1.225 * fit_v[150] ** 2
+    assert fit_a[150] == pytest.approx(1 / (marks["fit_intercept"] + marks["fit_slope"] * q))
+    assert marks["fold_velocity"] == pytest.approx(21.44, abs=0.01)
+    assert marks["linear_velocity"] == pytest.approx(24.22, abs=0.01)
+    assert "fold, 21.44 m/s" in page.inner_text("#sweep-note")
+    rows = page.locator("#sweep-table tbody tr")
+    assert rows.count() == 9
+    assert rows.nth(8).get_attribute("data-status") == "no_equilibrium"
+    # Figure 14.5 now shows the sweep's fastest equilibrium, as the study does (20 m/s).
+    assert page.input_value("#shape-of") == "sweep-7"
+    assert tab.figure("14.5")["marks"]["tip_twist"] == pytest.approx(13.65, abs=0.01)
+    assert tab.errors == []
+
+
+def test_a_negative_chord_is_reported_next_to_its_cell(visit: Callable[..., Visit]) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#stations-details summary")
+    cell = page.locator("#cell-chord-3")
+    cell.fill("-0.5")
+    assert page.is_checked("#mode-table")  # editing a cell switches to the table
+    before = tab.runs()
+    cell.press("Enter")  # Enter in any field solves
+    tab.wait_runs("failed", before)
+    assert cell.get_attribute("aria-invalid") == "true"
+    error_id = cell.get_attribute("aria-describedby")
+    assert error_id is not None
+    error = page.locator(f"#{error_id}")
+    assert error.is_visible()
+    assert "greater than or equal to 0.001" in error.inner_text()
+    # Next to that input: in the same table cell, right after it.
+    assert page.evaluate(
+        "id => document.getElementById(id).previousElementSibling.id", error_id
+    ) == ("cell-chord-3")
+    problem = page.inner_text("#problem")
+    assert "Check the highlighted inputs" in problem and "wing.chord[3]" in problem
+    # No other input is marked.
+    assert page.locator("[aria-invalid=true]").count() == 1
+    assert tab.errors_but(422) == []
+
+
+def test_a_negative_root_chord_in_the_planform_is_reported_there(
+    visit: Callable[..., Visit],
+) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.select_option("#f-taper", "linear")
+    page.fill("#f-root_chord", "-1")
+    before = tab.runs()
+    page.press("#f-root_chord", "Enter")
+    tab.wait_runs("failed", before)
+    assert page.get_attribute("#f-root_chord", "aria-invalid") == "true"
+    assert "station 0 (chord): Input should be greater than or equal to 0.001" in page.inner_text(
+        "#f-root_chord-error"
+    )
+    assert tab.errors_but(422) == []
+
+
+def test_beyond_the_fold_the_page_says_so_in_plain_words(visit: Callable[..., Visit]) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.fill("#f-velocity", "23")
+    before = tab.runs()
+    page.press("#f-velocity", "Enter")
+    tab.wait_runs("failed", before)
+    problem = page.inner_text("#problem")
+    assert "No equilibrium at 23 m/s" in problem
+    assert "fold speed, 21.44 m/s" in problem
+    assert page.get_attribute("#problem", "data-type") == "/problems/no-equilibrium"
+    assert tab.errors_but(422) == []
+
+
+def test_pasted_json_loads_and_solves(visit: Callable[..., Visit], server: Server) -> None:
+    body = httpx.get(server.base_url + "/openapi.json").json()
+    example = body["paths"]["/solve"]["post"]["requestBody"]["content"]["application/json"]
+    request = example["examples"]["study"]["value"]
+    request["flight"]["velocity"] = 12
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#json-io summary")
+    page.fill("#json-text", json.dumps(request))
+    page.click("#json-load")
+    assert page.is_checked("#mode-table")
+    assert page.input_value("#f-velocity") == "12"
+    before = tab.runs()
+    page.click("#solve-button")
+    tab.wait_runs("solve", before)
+    assert tab.total("tip_twist") == "+2.67 deg"  # the study's 12 m/s point
+    page.fill("#json-text", "{not json")
+    page.click("#json-load")
+    assert "Not valid JSON" in page.inner_text("#json-error")
+
+
+def test_downloads_results_and_figures(visit: Callable[..., Visit]) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    with page.expect_download() as info:
+        page.click("#download-stations")
+    lines = Path(info.value.path()).read_text().splitlines()
+    assert lines[0].startswith("y [m],heave [m],slope [-],twist [deg]")
+    assert len(lines) == 31
+    with page.expect_download() as info:
+        page.click("#download-sweep")
+    assert Path(info.value.path()).read_text().splitlines()[0].startswith("velocity [m/s],status")
+    with page.expect_download() as info:
+        page.click("#download-json")
+    results = json.loads(Path(info.value.path()).read_text())
+    assert results["solve"]["response"]["totals"]["lift"] == pytest.approx(304.125, abs=1e-3)
+    rigid_panels = results["solve"]["rigid"]["panels"]
+    assert (
+        rigid_panels["lift_per_span"]
+        == results["solve"]["response"]["panels"]["rigid_lift_per_span"]
+    )
+    page.click("#json-io summary")
+    with page.expect_download() as info:
+        page.click("#json-download")
+    assert json.loads(Path(info.value.path()).read_text())["flight"]["velocity"] == 10
+    for figure in ("fig-14-2", "fig-14-3", "fig-14-4", "fig-14-5"):
+        with page.expect_download() as info:
+            page.click(f'button.export-png[data-figure="{figure}"]')
+        assert info.value.suggested_filename == f"flexwing-{figure.replace('fig-', 'figure-')}.png"
+        assert Path(info.value.path()).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert tab.errors == []
+    assert tab.outside() == []
+
+
+def test_every_input_is_labelled_and_the_page_fits_a_phone(visit: Callable[..., Visit]) -> None:
+    tab = visit("/", PHONE)
+    tab.ready()
+    unlabelled = tab.page.evaluate(
+        """[...document.querySelectorAll("input, select, textarea")]
+            .filter(e => !(e.labels?.length || e.getAttribute("aria-labelledby")
+                           || e.getAttribute("aria-label")))
+            .map(e => e.id || e.outerHTML)"""
+    )
+    assert unlabelled == []
+    width = tab.page.evaluate("document.documentElement.scrollWidth")
+    assert width <= PHONE["width"]
+    assert tab.errors == []
+
+
+def test_screenshots(
+    visit: Callable[..., Visit],
+    tmp_path_factory: pytest.TempPathFactory,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    out = tmp_path_factory.mktemp("page-screenshots")
+    for name, viewport in (("desktop-1280x800", DESKTOP), ("phone-390x844", PHONE)):
+        tab = visit("/", viewport)
+        tab.ready()
+        tab.page.wait_for_timeout(100)  # the three-view's equal-axis redraw
+        tab.page.screenshot(path=out / f"{name}.png")
+        tab.page.screenshot(path=out / f"{name}-full.png", full_page=True)
+        assert tab.errors == []
+    for png in out.iterdir():
+        assert png.stat().st_size > 10_000, png
+    with capsys.disabled():
+        print(f"\npage screenshots (1280x800 and 390x844): {out}")
+
+
+def test_optional_fields_appear_when_the_api_has_them(browser: Browser, server: Server) -> None:
+    """A later API's wing.sweep [deg]: shown, with its description, when /openapi.json has it."""
+    document = httpx.get(server.base_url + "/openapi.json").json()
+    document["components"]["schemas"]["Wing"]["properties"]["sweep"] = {
+        "type": "number",
+        "description": "[deg] leading-edge sweep.",
+    }
+    context = browser.new_context(viewport=DESKTOP)
+    try:
+        page = context.new_page()
+        page.route("**/openapi.json", lambda route: route.fulfill(json=document))
+        page.goto(server.base_url + "/")
+        page.wait_for_function("() => window.__flexwing && window.__flexwing.ready")
+        assert page.inner_text('label[for="f-sweep_angle"]') == "Sweep [deg]"
+        assert page.inner_text("#f-sweep_angle ~ .hint") == "[deg] leading-edge sweep."
+    finally:
+        context.close()
+
+
+def test_docs_render_swagger_ui_offline(visit: Callable[..., Visit]) -> None:
+    tab = visit("/docs")
+    page = tab.page
+    page.wait_for_selector(".opblock-summary-path >> text=/solve")
+    assert page.locator(".opblock").count() >= 4
+    # The study's example runs from the page.
+    page.click(".opblock-post:has-text('/solve') .opblock-summary")
+    page.click("button.try-out__btn")
+    page.click("button.execute")
+    page.wait_for_selector(".live-responses-table .response-col_status >> text=200")
+    assert tab.errors == []
+    assert tab.outside() == []

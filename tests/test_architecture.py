@@ -1,0 +1,128 @@
+"""The import graph: solver/ in one direction, layer by layer, app/ on solver's public face only,
+no cycles, and no import hidden inside a function."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import solver
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# solver/, bottom first: a module may import only from the layers before its own.
+SOLVER_LAYERS: list[list[str]] = [
+    ["errors"],
+    ["inputs", "layout"],
+    ["geometry"],
+    ["vlm"],
+    ["residual"],
+    ["evaluation"],
+    ["compiled"],
+    ["newton", "stability", "continuation"],
+    ["path"],
+    ["results"],
+    ["cache"],
+    ["system"],
+    ["loads"],
+    ["jig"],
+    ["branch"],
+    ["equilibrium"],
+    ["divergence", "recovery"],
+    ["solve"],
+    ["sweep"],
+    ["warm"],
+    ["__init__"],
+]
+
+
+def _modules(package: str) -> dict[str, Path]:
+    base = ROOT / package
+    return {
+        ".".join(path.relative_to(base).with_suffix("").parts): path
+        for path in sorted(base.rglob("*.py"))
+    }
+
+
+def _imports(path: Path) -> tuple[set[str], list[int]]:
+    """Modules imported at the top level, and the lines of imports anywhere else."""
+    tree = ast.parse(path.read_text())
+    top: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.Import):
+            top.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            top.add(node.module)
+            top.update(f"{node.module}.{alias.name}" for alias in node.names)
+    nested = [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Import | ast.ImportFrom) and node not in tree.body
+    ]
+    return top, nested
+
+
+def _internal(imported: set[str], package: str, modules: dict[str, Path]) -> set[str]:
+    prefix = package + "."
+    return {name[len(prefix) :] for name in imported if name[len(prefix) :] in modules}
+
+
+def test_every_solver_module_has_a_layer():
+    layered = {name for layer in SOLVER_LAYERS for name in layer}
+    assert set(_modules("solver")) == layered
+
+
+@pytest.mark.parametrize("module", sorted(_modules("solver")))
+def test_a_solver_module_imports_only_from_the_layers_below(module: str):
+    modules = _modules("solver")
+    level = {name: i for i, layer in enumerate(SOLVER_LAYERS) for name in layer}
+    imported, _ = _imports(modules[module])
+    upward = {
+        name for name in _internal(imported, "solver", modules) if level[name] >= level[module]
+    }
+    assert not upward, f"solver.{module} imports {sorted(upward)} from its own layer or above"
+
+
+@pytest.mark.parametrize("package", ["solver", "app"])
+def test_no_module_imports_inside_a_function(package: str):
+    for name, path in _modules(package).items():
+        _, nested = _imports(path)
+        assert not nested, f"{package}.{name} imports inside a function at lines {nested}"
+
+
+@pytest.mark.parametrize("module", sorted(_modules("app")))
+def test_app_uses_only_the_solvers_public_face(module: str):
+    imported, _ = _imports(_modules("app")[module])
+    private = {name for name in imported if name.startswith("solver.")}
+    # `from solver import X` records solver.X: allowed when X is a public name.
+    private -= {f"solver.{name}" for name in solver.__all__}
+    assert not private, f"app.{module} imports solver internals {sorted(private)}"
+
+
+def test_app_has_no_import_cycle():
+    modules = _modules("app")
+    graph = {
+        name: {
+            other
+            for other in _internal(_imports(path)[0], "app", modules)
+            if other != name and not name.startswith(other + ".")
+        }
+        for name, path in modules.items()
+    }
+    visiting: set[str] = set()
+    done: set[str] = set()
+
+    def visit(node: str, trail: list[str]) -> None:
+        if node in done:
+            return
+        assert node not in visiting, "import cycle: " + " -> ".join([*trail, node])
+        visiting.add(node)
+        for neighbour in sorted(graph[node]):
+            visit(neighbour, [*trail, node])
+        visiting.discard(node)
+        done.add(node)
+
+    for name in sorted(graph):
+        visit(name, [])
