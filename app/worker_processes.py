@@ -226,6 +226,10 @@ class LocalWorkers:
         await asyncio.to_thread(self._join, workers, _STOP_GRACE)
         for w in workers:
             self._discard(w)
+        # Dropped now, their queues' semaphores are released before the process exits (else the
+        # resource tracker warns of "leaked semaphore objects").
+        self._workers = []
+        workers.clear()
         self.metrics.ready.set(0)
         self._detail = "closed"
 
