@@ -215,10 +215,10 @@ class JobManager:
             task.cancel()
         running = [job.task for job in self._live.values() if job.task is not None]
         for job in list(self._live.values()):
-            if job.task is None:
-                self._finish(job, "failed", problem=self._interrupted(job))
-            else:
+            if job.task is not None:
                 job.task.cancel()
+            if job.status == "queued":
+                self._finish(job, "failed", problem=self._interrupted(job))
         await asyncio.gather(*self._tasks, *running, return_exceptions=True)
         if self._started:
             await self.store.close()
@@ -265,6 +265,8 @@ class JobManager:
             await asyncio.wait([job.task])
 
     async def _execute(self, job: LiveJob) -> None:
+        if job.status != "queued":
+            return  # cancelled between being taken from the queue and starting
         job.status, job.started = "running", time.time()
         self.store.write(store.update_job, job.id, {"status": "running", "started": job.started})
         self._count("queued", "running")
@@ -347,9 +349,11 @@ class JobManager:
         if job is None:
             return await self._cancel_elsewhere(job_id)
         job.cancel_requested = True
-        if job.task is None:
+        if job.status == "queued":  # (its task, if any, has not begun: it never will)
             self._finish(job, "cancelled")
-        else:
+            if job.task is not None:
+                job.task.cancel()
+        elif job.task is not None:
             job.task.cancel()
             await asyncio.wait([job.task])
         return job.row()

@@ -20,7 +20,7 @@ import asyncio
 import json
 from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import dataclass
-from typing import Annotated, Any, Literal, Protocol, Union
+from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 
 from pydantic import BaseModel, Discriminator, Field, Tag, create_model
 from pydantic.json_schema import SkipJsonSchema
@@ -33,6 +33,8 @@ from app.service import Service
 from app.settings import Settings
 
 __all__ = ["OPERATIONS", "JobContext", "Operation", "problem_body", "register", "submission_type"]
+
+T = TypeVar("T")
 
 # Problems that mean "not now" for a batch item: it waits and tries again instead of failing.
 _TRANSIENT = frozenset({"overloaded", "not-ready"})
@@ -97,13 +99,27 @@ def problem_body(problem: Problem) -> dict[str, Any]:
 # ---------------------------------------------------------------------------- solve, sweep
 
 
+async def patiently(call: Callable[[], Awaitable[T]]) -> T:
+    """`call()`, again after a pause while the pool is full or restarting (a job waits its turn
+    where a synchronous request would get 503)."""
+    backoff = 0.05
+    while True:
+        try:
+            return await call()
+        except Problem as problem:
+            if problem.type.slug not in _TRANSIENT:
+                raise
+        await asyncio.sleep(backoff)
+        backoff = min(2 * backoff, _MAX_BACKOFF)
+
+
 async def _run_solve(context: JobContext, request: SolveRequest) -> str:
-    payload = await context.service.solve(request)
+    payload = await patiently(lambda: context.service.solve(request))
     return SolveResponse.model_validate(payload).model_dump_json()
 
 
 async def _run_sweep(context: JobContext, request: SweepRequest) -> str:
-    payload = await context.service.sweep(request)
+    payload = await patiently(lambda: context.service.sweep(request))
     return SweepResponse.model_validate(payload).model_dump_json()
 
 
@@ -134,19 +150,13 @@ def _check_batch(request: BatchRequest, settings: Settings) -> None:
 
 async def answer_item(context: JobContext, index: int, request: SolveRequest) -> tuple[bool, str]:
     """(ok, NDJSON line) of one batch item: its /solve response or its problem."""
-    backoff = 0.05
-    while True:
-        try:
-            payload = await context.service.solve(request)
-        except Problem as problem:
-            if problem.type.slug in _TRANSIENT:
-                await asyncio.sleep(backoff)  # the pool is full or restarting: wait our turn
-                backoff = min(2 * backoff, _MAX_BACKOFF)
-                continue
-            body = json.dumps(problem_body(problem), allow_nan=False)
-            return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
-        result = SolveResponse.model_validate(payload).model_dump_json()
-        return True, f'{{"index": {index}, "status": "ok", "result": {result}}}'
+    try:
+        payload = await patiently(lambda: context.service.solve(request))
+    except Problem as problem:
+        body = json.dumps(problem_body(problem), allow_nan=False)
+        return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
+    result = SolveResponse.model_validate(payload).model_dump_json()
+    return True, f'{{"index": {index}, "status": "ok", "result": {result}}}'
 
 
 async def _run_batch(context: JobContext, request: BatchRequest) -> None:
