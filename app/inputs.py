@@ -80,10 +80,22 @@ def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> 
             model.elastic_axis,
             model.bending_stiffness,
             model.torsional_stiffness,
+            sweep=model.sweep,
+            jig_twist=model.jig_twist,
+            airfoil=_airfoil(model.airfoil),
         )
     except InvalidInput as error:
         errors.append(FieldError(f"wing.{error.field}", error.reason))
         return None
+
+
+def _airfoil(spec: object) -> object:
+    """The request's airfoil as `solver.Wing.create` takes it."""
+    if isinstance(spec, list):
+        return [_airfoil(one) for one in spec]
+    if isinstance(spec, schemas.CamberTable):
+        return {"x": spec.x, "camber": spec.camber}
+    return spec
 
 
 def _flight(

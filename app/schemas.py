@@ -121,6 +121,9 @@ LIMITS: dict[str, Limit] = {
     "heave": Limit(-1e4, 1e4, "m", "a starting deformation"),
     "slope": Limit(-1e3, 1e3, "-", "a starting deformation"),
     "twist": Limit(-360.0, 360.0, "deg", "a starting deformation"),
+    "jig_twist": Limit(-30.0, 30.0, "deg", "a built-in twist the lattice can mean"),
+    "camber_x": Limit(0.0, 1.0, "-", "fractions of the chord"),
+    "camber": Limit(-0.2, 0.2, "-", "a thin airfoil's mean line"),
 }
 
 
@@ -158,6 +161,9 @@ ChordNumber = Annotated[float, _range("chord")]
 ElasticAxisNumber = Annotated[float, _range("elastic_axis")]
 StiffnessNumber = Annotated[float, _range("stiffness")]
 VelocityNumber = Annotated[float, _range("velocity")]
+JigTwistNumber = Annotated[float, _range("jig_twist")]
+CamberXNumber = Annotated[float, _range("camber_x")]
+CamberNumber = Annotated[float, _range("camber")]
 HeaveNumber = Annotated[float, _range("heave")]
 SlopeNumber = Annotated[float, _range("slope")]
 TwistNumber = Annotated[float, _range("twist")]
@@ -207,6 +213,35 @@ StationPositions = Annotated[
 ]
 
 
+class CamberTable(_Model):
+    """A camber line as points, linear between them: x / chord from 0 to 1 (increasing), and
+    camber / chord at each."""
+
+    x: Annotated[list[CamberXNumber], Field(min_length=2, max_length=MAX_ARRAY_LENGTH)] = Field(
+        description="[-] x / chord of the points, 0 first and 1 last, strictly increasing."
+    )
+    camber: Annotated[list[CamberNumber], Field(min_length=2, max_length=MAX_ARRAY_LENGTH)] = Field(
+        description="[-] camber / chord at each point, -0.2 to 0.2; as many as x."
+    )
+
+
+NacaDesignation = Annotated[
+    str,
+    Field(
+        pattern=r"^[nN][aA][cC][aA][0-9]{4}$",
+        description="A NACA 4-digit section, e.g. 'naca4412' (its analytic mean line).",
+    ),
+]
+CamberSpec = Annotated[
+    Annotated[NacaDesignation, Tag("@string")] | Annotated[CamberTable, Tag("@object")],
+    Discriminator(lambda value: "@string" if isinstance(value, str) else "@object"),
+]
+
+
+def _one_or_per_station(value: Any) -> str:
+    return "@list" if isinstance(value, list) else "@one"
+
+
 class Wing(_Model):
     """A symmetric wing described on its right half at N stations from the root.
 
@@ -244,6 +279,36 @@ class Wing(_Model):
         "stiffness",
         "torsional stiffness GJ at each station,",
         examples=[_STUDY_WING["torsional_stiffness"]],
+    )
+    sweep: float = Field(
+        default=0.0,
+        gt=-60.0,
+        lt=60.0,
+        allow_inf_nan=False,
+        description=(
+            "[deg] sweep of the elastic axis (the straight line x = y tan(sweep)), positive aft, "
+            "strictly between -60 and 60. Sections stay streamwise; the beam runs along the axis."
+        ),
+    )
+    jig_twist: StationValues[JigTwistNumber] = _described(
+        "jig_twist",
+        "built-in twist of each section (nose-up > 0), on top of which the wing deforms,",
+        default=0.0,
+    )
+    airfoil: (
+        Annotated[
+            Annotated[CamberSpec, Tag("@one")]
+            | Annotated[list[CamberSpec], PerStation, Tag("@list")],
+            Discriminator(_one_or_per_station),
+        ]
+        | None
+    ) = Field(
+        default=None,
+        description=(
+            "The sections' camber lines: one for every station or one per station (N), each a "
+            "NACA 4-digit designation or {x, camber}; null: no camber (flat or symmetric "
+            "sections). With one chordwise panel only the camber at x = 0 and 1 matters."
+        ),
     )
 
 
@@ -300,6 +365,23 @@ class SolverOptions(_Model):
         description=(
             "Also locate the fold of the equilibrium branch from the jig shape (where torsional "
             "divergence ends it) and report it in `fold`. Costs a continuation run."
+        ),
+    )
+    chordwise_panels: int = Field(
+        default=1,
+        ge=1,
+        le=8,
+        description=(
+            "[-] panels per strip, 1 to 8, cosine spaced (AeroSandbox's default): more resolve "
+            "the camber's pitching moment; 1 is the design study's model."
+        ),
+    )
+    torque_axis: Literal["undeformed", "deformed"] = Field(
+        default="undeformed",
+        description=(
+            "Axis of the torque the structure carries: 'undeformed' (the design study's, and "
+            "AeroSandbox-comparable) or 'deformed' (arms from the heaved elastic-axis point, as "
+            "codes that load the deformed beam do)."
         ),
     )
 

@@ -16,7 +16,13 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from solver.cache import CacheInfo, cache_info, clear_caches
-from solver.divergence import divergence_summary, find_fold, fit_divergence, linear_divergence
+from solver.divergence import (
+    divergence_summary,
+    find_fold,
+    fit_divergence,
+    linear_divergence,
+    linear_divergence_pressure,
+)
 from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, SolverError
 from solver.inputs import (
     ISA_SEA_LEVEL_DENSITY,
@@ -25,7 +31,6 @@ from solver.inputs import (
     SolverOptions,
     Wing,
 )
-from solver.jig import linear_divergence_pressure
 from solver.layout import Layout
 from solver.results import (
     DivergenceSummary,

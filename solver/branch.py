@@ -18,7 +18,7 @@ import numpy as np
 from solver.cache import cached, resize
 from solver.continuation import Branch, BranchTracer
 from solver.inputs import FlightCondition
-from solver.jig import jig, linear_divergence_pressure
+from solver.jig import jig, linear_pressure
 from solver.loads import lift_and_drag, panel_loads
 from solver.results import Fold
 from solver.system import CoupledSystem
@@ -38,7 +38,7 @@ _SCALE_TWIST = math.degrees(0.1)  # [deg]
 def search_velocity_limit(system: CoupledSystem, density: float, velocity: float) -> float:
     """[m/s] how far to follow the branch when `velocity` is the largest speed asked for."""
     limit = _PAST_REQUESTED * velocity
-    q_div = linear_divergence_pressure(system.wing)
+    q_div = linear_pressure(system)
     if q_div is not None:
         limit = max(limit, _PAST_LINEAR * FlightCondition.velocity_for(q_div, density))
     return limit
@@ -48,7 +48,7 @@ def pressure_scale(system: CoupledSystem) -> float:
     """[Pa] the wing's intrinsic pressure scale: its linear divergence pressure, or, for a wing
     that cannot diverge, where the linear theory's deformation reaches a tenth of the semispan
     or 0.1 rad of twist."""
-    q_div = linear_divergence_pressure(system.wing)
+    q_div = linear_pressure(system)
     if q_div is not None:
         return q_div
     start = jig(system)
@@ -70,7 +70,10 @@ class _CachedTracer:
     def __init__(self, system: CoupledSystem) -> None:
         start = jig(system)
         self.tracer = BranchTracer(
-            system.evaluate, np.array(start.state), system.scale(pressure_scale(system))
+            system.evaluate,
+            system.residual,
+            np.array(start.state),
+            system.scale(pressure_scale(system)),
         )
         self.lock = threading.Lock()
 
@@ -114,7 +117,7 @@ def fold(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
 
 def _bifurcation(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
     """An unloaded jig stays an equilibrium at every q and loses stability at the eigenvalue."""
-    q_div = linear_divergence_pressure(system.wing)
+    q_div = linear_pressure(system)
     if q_div is None:
         return Fold(
             None,

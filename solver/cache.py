@@ -121,9 +121,9 @@ def resize(key: tuple[Hashable, ...], value: Any, nbytes: int) -> None:
 
 
 def _model_bytes(model: CompiledModel) -> int:
-    """Measured: CasADi's graphs of one mesh take about 5 MB + 5.2 kB N^2."""
-    n = model.layout.n
-    return 5_000_000 + 5_200 * n * n
+    """Measured: CasADi's graphs of one mesh take about 5 MB + 5.2 kB (M + 1)^2 (M panels)."""
+    m = model.layout.n_panels + 1
+    return 5_000_000 + 5_200 * m * m
 
 
 def model_for(layout: Layout) -> CompiledModel:

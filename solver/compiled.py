@@ -36,7 +36,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from solver.evaluation import Evaluation
+from solver.evaluation import AlphaTerms, Evaluation
 from solver.layout import Layout
 from solver.residual import (
     MODEL_VERSION,
@@ -69,7 +69,8 @@ def compilation_enabled() -> bool:
 def _library_path(layout: Layout) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
     flags = "".join(_FLAGS).replace("-", "_")
-    tag = f"n{layout.n}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}{flags}"
+    mesh = f"n{layout.n}-k{layout.chordwise}"
+    tag = f"{mesh}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
 
 
@@ -101,8 +102,11 @@ _Functions = tuple[ca.Function, ca.Function, ca.Function]
 
 def _symbolic_functions(layout: Layout) -> _Functions:
     """The coupled (with Jacobians), residual-only and panel-loads functions, in that order."""
-    n = layout.n
-    return build_coupled_function(n), build_residual_function(n), build_panel_loads_function(n)
+    return (
+        build_coupled_function(layout),
+        build_residual_function(layout),
+        build_panel_loads_function(layout),
+    )
 
 
 class CompiledModel:
@@ -117,10 +121,31 @@ class CompiledModel:
         self.compiled = False
         self._compile_thread: threading.Thread | None = None
 
+    @classmethod
+    def from_library(cls, layout: Layout, library: Path) -> CompiledModel:
+        """The model served by a compiled library: no symbolic build at all."""
+        model = cls.__new__(cls)
+        model.layout = layout
+        model._compile_thread = None
+        model._use_library(library)
+        return model
+
     def evaluate(self, x: np.ndarray, p: np.ndarray) -> Evaluation:
         """Residual parts and exact Jacobians at x (about 4x the cost of `residual`)."""
-        r0, r1, j0, j1 = self._calls[0](x, p)
+        r0, r1, j0, j1, *_ = self._calls[0](x, p)
         return Evaluation(r0.ravel(), r1.ravel(), j0, j1)
+
+    def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
+        """`evaluate`, and what a trimmed solve adds (same evaluation, nothing recomputed)."""
+        r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha = self._calls[0](x, p)
+        terms = AlphaTerms(
+            r0_alpha.ravel(),
+            r1_alpha.ravel(),
+            float(lift[0, 0]),
+            lift_x.ravel(),
+            float(lift_alpha[0, 0]),
+        )
+        return Evaluation(r0.ravel(), r1.ravel(), j0, j1), terms
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(r0, r1) at x, without derivatives."""
@@ -128,8 +153,8 @@ class CompiledModel:
         return r0.ravel(), r1.ravel()
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
-        """[force (3, M) per unit q, torque (1, M) per unit q, vortex_center (3, M),
-        vortex_vertex (3, N)]: the right half-wing's panels, root to tip."""
+        """[force (3, M) per unit q, torque (1, M) per unit q about the undeformed elastic axis,
+        center (3, M) force points, quarter_chord (3, N)]: the right half-wing's panels."""
         return self._calls[2](x, p)
 
     @property
@@ -158,8 +183,12 @@ class CompiledModel:
                 self._use_library(library)
 
     def _use_library(self, library: Path) -> None:
-        n = self.layout.n
-        names = (f"flexwing_coupled_{n}", f"flexwing_residual_{n}", f"flexwing_panel_loads_{n}")
+        tag = f"{self.layout.n}_{self.layout.chordwise}"
+        names = (
+            f"flexwing_coupled_{tag}",
+            f"flexwing_residual_{tag}",
+            f"flexwing_panel_loads_{tag}",
+        )
         calls = [_BufferedCall(ca.external(name, str(library))) for name in names]
         self._calls = calls  # one assignment: a concurrent call sees either set, never a mix
         self.compiled = True
@@ -171,7 +200,7 @@ class CompiledModel:
             target=_background_compile,
             args=(self, functions, launched),
             daemon=True,
-            name=f"flexwing-compile-{self.layout.n}",
+            name=f"flexwing-compile-{self.layout.n}-{self.layout.chordwise}",
         )
         self._compile_thread.start()
 
@@ -179,6 +208,10 @@ class CompiledModel:
 def build_model(layout: Layout) -> CompiledModel:
     """A model for `layout`: compiled if a library exists on disk, else the virtual machine,
     compiling in the background when compilation is enabled."""
+    library = _library_path(layout)
+    if library.exists():
+        with contextlib.suppress(OSError, RuntimeError):
+            return CompiledModel.from_library(layout, library)
     functions = _symbolic_functions(layout)
     model = CompiledModel(layout, functions)
     model.refresh()
@@ -213,7 +246,7 @@ def _compile_library(
         if functions is None:
             functions = _symbolic_functions(layout)
         work = Path(tempfile.mkdtemp(prefix="build-", dir=library.parent))
-        source = work / f"flexwing_{layout.n}.c"
+        source = work / f"flexwing_{layout.n}_{layout.chordwise}.c"
         generator = ca.CodeGenerator(source.name, {"with_header": False})
         for function in functions:
             generator.add(function)

@@ -59,11 +59,12 @@ class ContinuationSettings:
     max_displacement: largest corrector displacement of an accepted step, relative to the step.
     max_steps: accepted steps before giving up.
     fold_tolerance: |dq/ds| at which the fold counts as located. q is quadratic in arclength
-        there, so q's relative error is about this squared.
+        there, so q's relative error is about this squared; so tight that Newton from the
+        branch still finds the stable side 1e-6 below the fold (costs one or two evaluations).
     """
 
     tolerance: float = 1e-10
-    initial_step: float = 0.1
+    initial_step: float = 0.2
     min_step: float = 1e-6
     max_step: float = 2.0
     max_corrector_iterations: int = 6
@@ -164,14 +165,13 @@ class Branch:
 
 
 def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: float) -> np.ndarray:
-    """(4N,) scale factors z = scale * w (see the module docstring)."""
-    n = layout.n
-    rms = math.sqrt(n)
+    """(n + 1,) scale factors z = scale * w (see the module docstring)."""
+    rms_stations, rms_panels = math.sqrt(layout.n), math.sqrt(layout.n_panels)
     scale = np.empty(layout.n_unknowns + 1)
-    scale[layout.heave] = semispan * rms
-    scale[layout.slope] = rms
-    scale[layout.twist] = math.degrees(1.0) * rms
-    scale[layout.circulation] = mean_chord * rms
+    scale[layout.heave] = semispan * rms_stations
+    scale[layout.slope] = rms_stations
+    scale[layout.twist] = math.degrees(1.0) * rms_stations
+    scale[layout.circulation] = mean_chord * rms_panels
     scale[-1] = q_scale
     return scale
 
@@ -231,10 +231,12 @@ class _Tracer:
     def __init__(
         self,
         evaluate: Callable[[np.ndarray], Evaluation],
+        residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
         scale: np.ndarray,
         settings: ContinuationSettings,
     ) -> None:
         self.evaluate_x = evaluate
+        self.residual_x = residual
         self.scale = scale
         self.settings = settings
         self.evaluations = 0
@@ -244,11 +246,16 @@ class _Tracer:
         return self.evaluate_x(w[:-1] * self.scale[:-1])
 
     def correct(self, w_start: np.ndarray, normal: np.ndarray, offset: float) -> _Corrected | None:
-        """Newton on r = 0 within the hyperplane normal . w = offset, from w_start."""
+        """Newton on r = 0 within the hyperplane normal . w = offset, from w_start.
+
+        After each correction the residual alone is checked first; the Jacobians are evaluated
+        only where it has not converged, so the corrected point carries those of the iterate
+        one correction before it (which its tangent uses: an error of the order of that last,
+        small correction)."""
         w = w_start.copy()
         first_correction = 0.0
+        evaluation = self.evaluate(w)
         for iteration in range(self.settings.max_corrector_iterations + 1):
-            evaluation = self.evaluate(w)
             q = w[-1] * self.scale[-1]
             residual = evaluation.residual(q)
             if not np.all(np.isfinite(residual)):
@@ -273,6 +280,14 @@ class _Tracer:
             if iteration == 0:
                 first_correction = float(np.linalg.norm(update))
             w = w - update
+            r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
+            q = w[-1] * self.scale[-1]
+            if np.all(np.isfinite(r0 + q * r1)) and np.max(np.abs(r0 + q * r1)) <= (
+                self.settings.tolerance
+            ):
+                evaluation = Evaluation(r0, r1, evaluation.jacobian0, evaluation.jacobian1)
+            else:
+                evaluation = self.evaluate(w)
         return None
 
 
@@ -285,18 +300,19 @@ class BranchTracer:
     alpha alone, never of the limits asked for or their order: `view(q_limit)` is the canonical
     prefix a fresh trace to q_limit would have produced.
 
-    `evaluate(x)` returns r0, r1, J0, J1 at x for the wing and alpha of interest; `jig_state`
-    must solve r0 = 0 (the rigid solution, which is exact at q = 0).
+    `evaluate(x)` returns r0, r1, J0, J1 at x for the wing and alpha of interest, `residual(x)`
+    r0 and r1 alone; `jig_state` must solve r0 = 0 (the rigid solution, exact at q = 0).
     """
 
     def __init__(
         self,
         evaluate: Callable[[np.ndarray], Evaluation],
+        residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
         jig_state: np.ndarray,
         scale: np.ndarray,
         settings: ContinuationSettings | None = None,
     ) -> None:
-        self._tracer = _Tracer(evaluate, scale, settings or ContinuationSettings())
+        self._tracer = _Tracer(evaluate, residual, scale, settings or ContinuationSettings())
         self.scale = scale
         w = _scaled(jig_state, 0.0, scale)
         evaluation = self._tracer.evaluate(w)

@@ -16,17 +16,31 @@ from typing import Literal
 import numpy as np
 
 from solver.branch import fold, search_velocity_limit
-from solver.inputs import FlightCondition, Wing
-from solver.jig import linear_divergence_pressure
+from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.jig import linear_pressure
 from solver.results import DivergenceSummary, Equilibrium, FitDivergence, Fold, LinearDivergence
 from solver.system import CoupledSystem
 
-__all__ = ["divergence_summary", "find_fold", "fit_divergence", "linear_divergence"]
+__all__ = [
+    "divergence_summary",
+    "find_fold",
+    "fit_divergence",
+    "linear_divergence",
+    "linear_divergence_pressure",
+]
 
 
-def linear_divergence(wing: Wing, density: float) -> LinearDivergence:
-    """The classical eigenvalue q_div at the unloaded jig (alpha = 0), and V at `density`."""
-    q_div = linear_divergence_pressure(wing)
+def linear_divergence_pressure(wing: Wing, options: SolverOptions | None = None) -> float | None:
+    """[Pa] the classical linear divergence dynamic pressure of the undeformed, unloaded wing
+    (as modelled by `options`: chordwise panels, torque axis), or None if it cannot diverge."""
+    return linear_pressure(CoupledSystem.of(wing, 0.0, options or SolverOptions()))
+
+
+def linear_divergence(
+    wing: Wing, density: float, options: SolverOptions | None = None
+) -> LinearDivergence:
+    """The classical eigenvalue q_div of the unloaded jig, and V at `density`."""
+    q_div = linear_divergence_pressure(wing, options)
     if q_div is None:
         return LinearDivergence(
             None,
@@ -98,14 +112,18 @@ def _amplification(equilibrium: Equilibrium, amplification: str) -> float:
 
 
 def find_fold(
-    wing: Wing, alpha: float, density: float, velocity_limit: float | None = None
+    wing: Wing,
+    alpha: float,
+    density: float,
+    velocity_limit: float | None = None,
+    options: SolverOptions | None = None,
 ) -> Fold:
     """The fold of the equilibrium branch from the jig shape at `alpha` [deg].
 
     The branch is searched up to `velocity_limit` [m/s] (default: past the linear divergence
     speed, see `solver.branch.search_velocity_limit`); speeds are at `density` [kg/m^3].
     """
-    system = CoupledSystem(wing, alpha)
+    system = CoupledSystem.of(wing, alpha, options or SolverOptions())
     if velocity_limit is None:
         velocity_limit = search_velocity_limit(system, density, 0.0)
     return fold(system, density, velocity_limit)
@@ -117,15 +135,18 @@ def divergence_summary(
     density: float,
     equilibria: Sequence[Equilibrium] = (),
     velocity_limit: float | None = None,
+    options: SolverOptions | None = None,
 ) -> DivergenceSummary:
     """All three estimates: linear at the jig, the study's fit over `equilibria` (its stable
     ones), and the fold searched up to `velocity_limit` [m/s] (default: past linear divergence
     and 1.5 times the fastest equilibrium given)."""
+    options = options or SolverOptions()
     if velocity_limit is None:
         fastest = max((e.flight.velocity for e in equilibria), default=0.0)
-        velocity_limit = search_velocity_limit(CoupledSystem(wing, alpha), density, fastest)
+        system = CoupledSystem.of(wing, alpha, options)
+        velocity_limit = search_velocity_limit(system, density, fastest)
     return DivergenceSummary(
-        linear=linear_divergence(wing, density),
+        linear=linear_divergence(wing, density, options),
         fit=fit_divergence(equilibria),
-        fold=find_fold(wing, alpha, density, velocity_limit),
+        fold=find_fold(wing, alpha, density, velocity_limit, options),
     )

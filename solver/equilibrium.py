@@ -8,8 +8,8 @@ from typing import Literal
 import numpy as np
 
 from solver.evaluation import Evaluation
-from solver.inputs import FlightCondition
-from solver.jig import jig, linear_divergence_pressure
+from solver.inputs import FlightCondition, SolverOptions
+from solver.jig import jig, linear_pressure
 from solver.loads import equilibrium_loads
 from solver.results import Equilibrium, SolveInfo, Stability
 from solver.stability import divergence_pressure
@@ -26,8 +26,8 @@ def stability_of(
 ) -> Stability:
     """The verdict at the state whose Jacobians `evaluation` holds, at `flight`'s q."""
     q = flight.dynamic_pressure
-    local = divergence_pressure(evaluation, system.layout.load_rows)
-    linear = linear_divergence_pressure(system.wing)
+    local = divergence_pressure(evaluation, system.layout, jig(system).beam)
+    linear = linear_pressure(system)
     return Stability(
         stable=local is None or local > q,
         margin=0.0 if local is None else q / local,
@@ -43,6 +43,7 @@ def stability_of(
 def judge(
     system: CoupledSystem,
     flight: FlightCondition,
+    options: SolverOptions,
     x: np.ndarray,
     evaluation: Evaluation,
     *,
@@ -60,11 +61,12 @@ def judge(
     q = flight.dynamic_pressure
     rigid = jig(system)
     stations, panels, totals = equilibrium_loads(
-        system, x, q, q * rigid.rigid_lift_per_q, q * rigid.rigid_panel_lift_per_q, rigid.unloaded
+        system, x, q, q * rigid.rigid_lift_per_q, q * rigid.rigid_strip_lift_per_q, rigid.unloaded
     )
     return Equilibrium(
         wing=system.wing,
         flight=flight,
+        options=options,
         state=x,
         evaluation=evaluation,
         stations=stations,

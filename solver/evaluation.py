@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Evaluation"]
+__all__ = ["AlphaTerms", "Evaluation"]
 
 
 @dataclass(frozen=True)
@@ -31,3 +31,18 @@ class Evaluation:
     @property
     def nbytes(self) -> int:
         return self.r0.nbytes + self.r1.nbytes + self.jacobian0.nbytes + self.jacobian1.nbytes
+
+
+@dataclass(frozen=True)
+class AlphaTerms:
+    """What a trimmed solve adds at one state x, all per degree of alpha or per unit q.
+
+    r0, r1: (n,) d(r0)/d(alpha), d(r1)/d(alpha); lift: [m^2] lift of both halves per unit q;
+    lift_x: (n,) its gradient in x; lift_alpha: [m^2/deg] its derivative in alpha.
+    """
+
+    r0: np.ndarray
+    r1: np.ndarray
+    lift: float
+    lift_x: np.ndarray
+    lift_alpha: float

@@ -1,18 +1,28 @@
-"""Deformed-wing geometry as AeroSandbox builds it, in CasADi symbols.
+"""The deformed wing's lattice, placed as the design study's make_wing and AeroSandbox place it, in
+CasADi symbols.
 
-One chordwise panel per strip means only each section's leading edge (LE) and trailing edge (TE)
-matter. The conventions below each change the answer by more than 1e-6 relative when done
-otherwise (see shared/notes/matching-aerosandbox.md):
+Each conventions below changes the answer by more than 1e-6 relative when done otherwise
+(tests/reference/CONVENTIONS.md, shared/notes/matching-aerosandbox.md):
 
-- LE_i = R_y(theta_i) [-x_ea c_i, y_i, 0] + [0, 0, u_i]: twist about the global y axis through
-  the elastic-axis point, then heave (the study's ``make_wing``).
-- The chord is rotated by theta_i about the section's *local* span axis: the normalised y-z
-  projection of LE_{i+1} - LE_i, averaged with the previous segment's at interior stations,
-  one-sided at the root and tip (AeroSandbox's ``Wing._compute_frame_of_WingXSec``).
-- Camber is not modelled: the mesh would add camber at x/c = 0 and 1 only, where a symmetric or
-  DAE-11 section has none.
+- The elastic axis (EA) is the line x = y tan(sweep) in the wing plane; station i's EA point is
+  (y_i tan(sweep), y_i, 0). Sections stay streamwise.
+- What the flow sees at station i is the streamwise angle
+      t_i = phi_i cos(sweep) - degrees(du/ds)_i sin(sweep) + jig_i   [deg]
+  (phi: twist about the EA; du/ds: the beam's slope; bending an aft-swept wing up washes it out).
+- Leading edge: LE_i = EA_i + R_y(t_i) [-x_ea c_i, 0, 0] + [0, 0, u_i]: a rotation about the
+  GLOBAL y axis through the EA point, then the heave (the study's make_wing).
+- The section's axes are turned by t_i about its LOCAL span axis: the normalised y-z projection of
+  LE_{i+1} - LE_i, averaged with the previous segment's inside, one-sided at root and tip
+  (AeroSandbox's Wing._compute_frame_of_WingXSec). Its up axis is scaled by sqrt(2/(1 + cos d))
+  inside (d: the angle between the two segments).
+- Chordwise nodes x_j = 0.5 - 0.5 cos(pi j / k), j = 0..k (cosine spacing), each at
+  LE_i + x_j c_i x_sec + camber_ij c_i z_sec (camber as a fraction of chord, in the section's
+  own frame).
+- Panel (strip i, chordwise j) is index i k + j; its bound vortex runs from 0.75 front + 0.25 back
+  of its left edge to the same point of its right edge; its collocation point is midway in span on
+  its 3/4 line; its normal is (FR - BL) x (FL - BR), normalised.
 
-Points are (3, N) matrices of [x, y, z] in geometry axes (x aft, y right, z up) [m].
+Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up) [m].
 """
 
 from __future__ import annotations
@@ -22,61 +32,54 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-__all__ = ["StationPoints", "PanelGeometry", "station_points", "panel_geometry"]
+__all__ = ["Lattice", "chordwise_nodes", "lattice", "streamwise_twist"]
 
-QUARTER_CHORD = 0.25  # bound vortex position along each panel's chord
-THREE_QUARTER_CHORD = 0.75  # collocation point position along each panel's chord
+DEG = np.pi / 180.0
+
+
+def chordwise_nodes(k: int) -> np.ndarray:
+    """(k + 1,) [-] cosine-spaced node positions along the chord, 0 to 1 (AeroSandbox's)."""
+    nodes = 0.5 - 0.5 * np.cos(np.pi * np.arange(k + 1) / k)
+    nodes[0], nodes[-1] = 0.0, 1.0
+    return nodes
+
+
+def streamwise_twist(phi: ca.SX, slope: ca.SX, jig: ca.SX, sweep_deg: ca.SX) -> ca.SX:
+    """[deg] what the flow sees: phi cos(sweep) - degrees(du/ds) sin(sweep) + jig."""
+    sweep = sweep_deg * DEG
+    return phi * ca.cos(sweep) - slope / DEG * ca.sin(sweep) + jig
 
 
 @dataclass(frozen=True)
-class StationPoints:
-    """Per-station points of the deformed wing, each (3, N) [m]."""
+class Lattice:
+    """The right half-wing's panels, index i k + j, each (3, M) [m] unless said.
 
-    leading_edge: ca.SX
-    trailing_edge: ca.SX
-    vortex_vertex: ca.SX  # quarter-chord point: horseshoe corners
-    three_quarter: ca.SX  # three-quarter-chord point
-
-
-@dataclass(frozen=True)
-class PanelGeometry:
-    """Per-panel quantities of the right half-wing, root to tip, each (3, N-1)."""
-
-    collocation: ca.SX  # [m] flow-tangency point, middle of the 3/4-chord line
-    vortex_center: ca.SX  # [m] middle of the bound vortex, where forces act
-    bound_leg: ca.SX  # [m] bound vortex vector, inboard to outboard vertex
-    normal: ca.SX  # [-] unit panel normal, upward for an undeformed wing
-
-
-def _rows(*rows: ca.SX) -> ca.SX:
-    """Stack (1, N) rows into a (3, N) point matrix."""
-    return ca.vertcat(*rows)
-
-
-def station_points(
-    heave: ca.SX,
-    twist_deg: ca.SX,
-    y: ca.SX,
-    chord: ca.SX,
-    elastic_axis: ca.SX,
-) -> StationPoints:
-    """Station points of the wing deformed by heave and twist.
-
-    Args:
-        heave: (N,) [m] vertical displacement u, positive up.
-        twist_deg: (N,) [deg] nose-up rotation theta about the elastic axis.
-        y: (N,) [m] jig station positions.
-        chord: (N,) [m].
-        elastic_axis: (N,) [-] elastic-axis position as a fraction of chord.
+    left, right: bound-vortex vertices; center: force point (middle of the bound vortex);
+    leg: bound vortex vector; collocation: flow-tangency point; normal: unit normal [-].
+    quarter_chord: (3, N) quarter-chord points of the stations, camber left out (AeroSandbox's
+    reference-area points).
     """
-    twist = twist_deg * (np.pi / 180.0)
-    cos_t, sin_t = ca.cos(twist), ca.sin(twist)
-    ea_offset = chord * elastic_axis  # [m] from the LE back to the elastic axis
-    le_x = -ea_offset * cos_t
-    le_y = y
-    le_z = ea_offset * sin_t + heave
 
-    # Local span axis: normalised y-z projection of the LE-to-LE segments.
+    left: ca.SX
+    right: ca.SX
+    center: ca.SX
+    leg: ca.SX
+    collocation: ca.SX
+    normal: ca.SX
+    quarter_chord: ca.SX
+
+
+def _cross(a: ca.SX, b: ca.SX) -> ca.SX:
+    """Column-wise cross product of (3, n) matrices."""
+    return ca.vertcat(
+        a[1, :] * b[2, :] - a[2, :] * b[1, :],
+        a[2, :] * b[0, :] - a[0, :] * b[2, :],
+        a[0, :] * b[1, :] - a[1, :] * b[0, :],
+    )
+
+
+def _span_axes(le_y: ca.SX, le_z: ca.SX) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """Local span axis (y, z components) and the up axis's scale at each station."""
     seg_y = le_y[1:] - le_y[:-1]
     seg_z = le_z[1:] - le_z[:-1]
     seg_len = ca.sqrt(seg_y**2 + seg_z**2)
@@ -84,48 +87,76 @@ def station_points(
     mid_y = (seg_y[:-1] + seg_y[1:]) / 2
     mid_z = (seg_z[:-1] + seg_z[1:]) / 2
     mid_len = ca.sqrt(mid_y**2 + mid_z**2)
+    cos_between = seg_y[:-1] * seg_y[1:] + seg_z[:-1] * seg_z[1:]
     axis_y = ca.vertcat(seg_y[0], mid_y / mid_len, seg_y[-1])
     axis_z = ca.vertcat(seg_z[0], mid_z / mid_len, seg_z[-1])
+    scale = ca.vertcat(1, ca.sqrt(2 / (1 + cos_between)), 1)
+    return axis_y, axis_z, scale
 
-    # Chord direction: x rotated by the twist about the local span axis (Rodrigues, axis_x = 0).
-    chord_x = cos_t
-    chord_y = axis_z * sin_t
-    chord_z = -axis_y * sin_t
 
-    def along_chord(fraction: float) -> ca.SX:
-        return _rows(
-            (le_x + fraction * chord * chord_x).T,
-            (le_y + fraction * chord * chord_y).T,
-            (le_z + fraction * chord * chord_z).T,
-        )
+def lattice(
+    heave: ca.SX,
+    slope: ca.SX,
+    phi: ca.SX,
+    y: ca.SX,
+    chord: ca.SX,
+    elastic_axis: ca.SX,
+    jig: ca.SX,
+    camber: ca.SX,
+    sweep_deg: ca.SX,
+    k: int,
+) -> Lattice:
+    """The deformed lattice.
 
-    return StationPoints(
-        leading_edge=along_chord(0.0),
-        trailing_edge=along_chord(1.0),
-        vortex_vertex=along_chord(QUARTER_CHORD),
-        three_quarter=along_chord(THREE_QUARTER_CHORD),
+    Args:
+        heave: (N,) [m] u; slope: (N,) [-] du/ds; phi: (N,) [deg] twist about the EA.
+        y: (N,) [m]; chord: (N,) [m] streamwise; elastic_axis: (N,) [-] fraction of chord;
+        jig: (N,) [deg] built-in twist; camber: (N, k + 1) [-] camber / chord at the chordwise
+        nodes; sweep_deg: [deg] of the elastic axis, positive aft; k: chordwise panels.
+    """
+    n = y.shape[0]
+    twist = streamwise_twist(phi, slope, jig, sweep_deg) * DEG
+    cos_t, sin_t = ca.cos(twist), ca.sin(twist)
+    ea_offset = chord * elastic_axis
+    le_x = y * ca.tan(sweep_deg * DEG) - ea_offset * cos_t
+    le_y = y
+    le_z = ea_offset * sin_t + heave
+    axis_y, axis_z, scale = _span_axes(le_y, le_z)
+    # Chord axis: x turned by the twist about the local span axis (Rodrigues, axis_x = 0); up
+    # axis: (x cross span axis) turned likewise, times the scale.
+    chord_axis = ca.vertcat((cos_t).T, (axis_z * sin_t).T, (-axis_y * sin_t).T)
+    up_axis = ca.vertcat((scale * sin_t).T, (-scale * axis_z * cos_t).T, (scale * axis_y * cos_t).T)
+    le = ca.vertcat(le_x.T, le_y.T, le_z.T)
+    chord_row = chord.T
+    nodes = [
+        le
+        + ca.repmat(chord_row * x, 3, 1) * chord_axis
+        + ca.repmat(chord_row * camber[:, j].T, 3, 1) * up_axis
+        for j, x in enumerate(chordwise_nodes(k))
+    ]
+    order = [j * (n - 1) + i for i in range(n - 1) for j in range(k)]
+
+    def panels(corner: list[ca.SX]) -> ca.SX:
+        return ca.horzcat(*corner)[:, order]
+
+    front_left = panels([nodes[j][:, :-1] for j in range(k)])
+    back_left = panels([nodes[j + 1][:, :-1] for j in range(k)])
+    front_right = panels([nodes[j][:, 1:] for j in range(k)])
+    back_right = panels([nodes[j + 1][:, 1:] for j in range(k)])
+    left = 0.75 * front_left + 0.25 * back_left
+    right = 0.75 * front_right + 0.25 * back_right
+    collocation = 0.5 * (0.25 * front_left + 0.75 * back_left) + 0.5 * (
+        0.25 * front_right + 0.75 * back_right
     )
-
-
-def panel_geometry(points: StationPoints) -> PanelGeometry:
-    """Panels between consecutive stations (AeroSandbox's VLM conventions)."""
-    le, te = points.leading_edge, points.trailing_edge
-    front_left, front_right = le[:, :-1], le[:, 1:]
-    back_left, back_right = te[:, :-1], te[:, 1:]
-    diagonal_1 = front_right - back_left
-    diagonal_2 = front_left - back_right
-    cross = ca.vertcat(
-        diagonal_1[1, :] * diagonal_2[2, :] - diagonal_1[2, :] * diagonal_2[1, :],
-        diagonal_1[2, :] * diagonal_2[0, :] - diagonal_1[0, :] * diagonal_2[2, :],
-        diagonal_1[0, :] * diagonal_2[1, :] - diagonal_1[1, :] * diagonal_2[0, :],
-    )
-    cross_norm = ca.sqrt(ca.sum1(cross**2))
-    normal = cross / ca.repmat(cross_norm, 3, 1)
-    vertex = points.vortex_vertex
-    three_quarter = points.three_quarter
-    return PanelGeometry(
-        collocation=(three_quarter[:, :-1] + three_quarter[:, 1:]) / 2,
-        vortex_center=(vertex[:, :-1] + vertex[:, 1:]) / 2,
-        bound_leg=vertex[:, 1:] - vertex[:, :-1],
+    cross = _cross(front_right - back_left, front_left - back_right)
+    normal = cross / ca.repmat(ca.sqrt(ca.sum1(cross**2)), 3, 1)
+    quarter_chord = le + ca.repmat(chord_row * 0.25, 3, 1) * chord_axis
+    return Lattice(
+        left=left,
+        right=right,
+        center=(left + right) / 2,
+        leg=right - left,
+        collocation=collocation,
         normal=normal,
+        quarter_chord=quarter_chord,
     )

@@ -11,13 +11,17 @@ import hashlib
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Literal
 
 import numpy as np
 
+from solver.airfoil import CamberLine, camber_line
 from solver.errors import InvalidInput
 
 __all__ = [
     "ISA_SEA_LEVEL_DENSITY",
+    "MAX_CHORDWISE_PANELS",
+    "MAX_SWEEP",
     "MIN_SPACING",
     "MIN_STATIONS",
     "FlightCondition",
@@ -27,6 +31,8 @@ __all__ = [
 
 MIN_STATIONS = 3
 MIN_SPACING = 1e-4  # [-] of the semispan, between consecutive stations
+MAX_SWEEP = 60.0  # [deg] |sweep| below this: the streamwise sections' strips stay sensible
+MAX_CHORDWISE_PANELS = 8
 ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
 
 
@@ -65,15 +71,19 @@ def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Wing:
-    """A symmetric, unswept, flexible wing (right half; the left half is mirrored).
+    """A symmetric flexible wing (right half; the left half is mirrored).
 
     Attributes:
         y: (N,) [m] spanwise station positions, y[0] = 0 at the root, strictly increasing.
-        chord: (N,) [m] chord length at each station, > 0.
+        chord: (N,) [m] streamwise chord length at each station, > 0.
         elastic_axis: (N,) [-] elastic-axis position as a fraction of chord from the leading edge.
-            Each section is placed so that this point lies at x = 0.
-        bending_stiffness: (N,) [N m^2] flapwise EI, > 0.
+            Each section is placed so that this point lies on the elastic axis.
+        bending_stiffness: (N,) [N m^2] flapwise EI, > 0, of the section normal to the axis.
         torsional_stiffness: (N,) [N m^2] GJ, > 0.
+        sweep: [deg] of the elastic axis, the straight line x = y tan(sweep), positive aft,
+            |sweep| < 60. Sections stay streamwise.
+        jig_twist: (N,) [deg] built-in twist of each section, nose-up > 0.
+        camber: (N,) the sections' camber lines (`solver.airfoil`).
     """
 
     y: np.ndarray
@@ -81,6 +91,9 @@ class Wing:
     elastic_axis: np.ndarray
     bending_stiffness: np.ndarray
     torsional_stiffness: np.ndarray
+    sweep: float = 0.0
+    jig_twist: np.ndarray | None = None
+    camber: tuple[CamberLine, ...] = ()
 
     @classmethod
     def create(
@@ -90,8 +103,14 @@ class Wing:
         elastic_axis: object,
         bending_stiffness: object,
         torsional_stiffness: object,
+        *,
+        sweep: object = 0.0,
+        jig_twist: object = 0.0,
+        airfoil: object = None,
     ) -> Wing:
-        """Validate and normalise inputs; any per-station input may be one number for all."""
+        """Validate and normalise inputs; any per-station input may be one number for all, and
+        `airfoil` one camber line for all (None, "naca4412", {"x": [...], "camber": [...]}) or
+        a list of N."""
         y_arr = _station_array("y", y, None)
         n = y_arr.shape[0]
         if n < MIN_STATIONS:
@@ -119,7 +138,20 @@ class Wing:
         if not np.all((elastic_axis_arr >= 0) & (elastic_axis_arr <= 1)):
             # A fraction of chord from the leading edge: the axis must lie on the section.
             raise InvalidInput("elastic_axis", "must lie between 0 and 1 (fraction of chord)")
-        return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj)
+        if not _is_number(sweep) or not math.isfinite(float(sweep)):  # type: ignore[arg-type]
+            raise InvalidInput("sweep", "must be a finite number")
+        if not abs(float(sweep)) < MAX_SWEEP:  # type: ignore[arg-type]
+            raise InvalidInput(
+                "sweep", f"must lie strictly between -{MAX_SWEEP:g} and {MAX_SWEEP:g} deg"
+            )
+        jig = _station_array("jig_twist", jig_twist, n)
+        if isinstance(airfoil, list | tuple):
+            if len(airfoil) != n:
+                raise InvalidInput("airfoil", f"has {len(airfoil)} sections but y has {n} stations")
+            camber = tuple(camber_line(a, f"airfoil[{i}]") for i, a in enumerate(airfoil))
+        else:
+            camber = (camber_line(airfoil),) * n
+        return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj, float(sweep) + 0.0, jig, camber)  # type: ignore[arg-type]
 
     @property
     def n_stations(self) -> int:
@@ -146,20 +178,31 @@ class Wing:
         `elastic_axis=0.4` and thirty 0.4s are one wing. Every cache, the solver's and the
         service's, keys a wing by it."""
         digest = hashlib.blake2b(digest_size=16)
-        for array in self.arrays():
+        for array in (*self.arrays(), np.array([self.sweep])):
             # + 0.0 turns -0.0 into 0.0, so equal numbers hash equally.
             digest.update(np.ascontiguousarray(array + 0.0, dtype=np.float64).tobytes())
+        for line in self.camber:
+            digest.update(line.key)
         return digest.hexdigest()
 
     def arrays(self) -> tuple[np.ndarray, ...]:
-        """The station arrays in the order of the model's parameter vector."""
+        """The station arrays in the order of the model's parameter vector: y, chord,
+        elastic_axis, EI, GJ, jig_twist."""
+        jig = np.zeros(self.n_stations) if self.jig_twist is None else self.jig_twist
         return (
             self.y,
             self.chord,
             self.elastic_axis,
             self.bending_stiffness,
             self.torsional_stiffness,
+            jig,
         )
+
+    def camber_at(self, x: np.ndarray) -> np.ndarray:
+        """(N, len(x)) [-] camber / chord of each station's section at x / chord."""
+        if not self.camber:
+            return np.zeros((self.n_stations, len(x)))
+        return np.array([line.at(x) for line in self.camber])
 
 
 @dataclass(frozen=True)
@@ -212,19 +255,31 @@ class FlightCondition:
 
 @dataclass(frozen=True)
 class SolverOptions:
-    """How to solve.
+    """How to model and how to solve.
 
     tolerance: max-norm of the residual at convergence (units in `solver.residual`).
     max_iterations: Newton iterations of one attempt before it is given up.
     find_fold: also locate the fold of the branch from the jig shape (`Equilibrium.fold`).
+    chordwise_panels: k, panels per strip (1 to 8, cosine spaced as AeroSandbox's).
+    torque_axis: "undeformed" (the study's: torque about the undeformed elastic axis) or
+        "deformed" (arms from the heaved elastic-axis point).
     """
 
     tolerance: float = 1e-10
     max_iterations: int = 30
     find_fold: bool = False
+    chordwise_panels: int = 1
+    torque_axis: Literal["undeformed", "deformed"] = "undeformed"
 
     def __post_init__(self) -> None:
         if not (_is_number(self.tolerance) and 0 < self.tolerance < 1):
             raise InvalidInput("tolerance", "must be a number between 0 and 1")
         if not (isinstance(self.max_iterations, int) and self.max_iterations >= 0):
             raise InvalidInput("max_iterations", "must be a non-negative integer")
+        k = self.chordwise_panels
+        if not (isinstance(k, int) and 1 <= k <= MAX_CHORDWISE_PANELS):
+            raise InvalidInput(
+                "chordwise_panels", f"must be an integer from 1 to {MAX_CHORDWISE_PANELS}"
+            )
+        if self.torque_axis not in ("undeformed", "deformed"):
+            raise InvalidInput("torque_axis", "must be 'undeformed' or 'deformed'")

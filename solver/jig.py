@@ -15,12 +15,11 @@ import numpy as np
 
 from solver.cache import cached
 from solver.evaluation import Evaluation
-from solver.inputs import Wing
 from solver.loads import lift_and_drag, panel_loads
-from solver.stability import divergence_pressure
+from solver.stability import beam_response, divergence_pressure
 from solver.system import CoupledSystem
 
-__all__ = ["NEGLIGIBLE_INCIDENCE", "Jig", "jig", "linear_divergence_pressure"]
+__all__ = ["NEGLIGIBLE_INCIDENCE", "Jig", "jig", "linear_pressure"]
 
 # [rad] The incidence below which a jig counts as unloaded: thin-airfoil circulation per unit
 # speed is g ~ pi c alpha, so the test is max |g| <= pi c_mean NEGLIGIBLE_INCIDENCE. Such an
@@ -32,10 +31,12 @@ NEGLIGIBLE_INCIDENCE = 1e-10
 class Jig:
     """The rigid jig of a wing at one alpha.
 
-    state: (n,) u = u' = theta = 0 with the rigid wing's circulations.
+    state: (n,) u = u' = phi = 0 with the rigid wing's circulations.
     evaluation: r0, r1, J0, J1 at `state` (r0 = 0 there to round-off).
     rigid_lift_per_q: [m^2] the rigid wing's lift over q.
-    rigid_panel_lift_per_q: (N-1,) [m^2] its panels' vertical forces over q.
+    rigid_strip_lift_per_q: (N-1,) [m^2] its strips' vertical forces over q.
+    beam: the clamped beam's response to its load rows (`solver.stability.beam_response`),
+        the same at every state: what every stability verdict of this wing reuses.
     unloaded: the jig carries no load worth the name: its circulation is below what
         `NEGLIGIBLE_INCIDENCE` of incidence would give (alpha = 0 on an uncambered, untwisted
         wing, or within round-off of it). It stays an equilibrium, to the tolerance, at every q
@@ -46,12 +47,13 @@ class Jig:
     state: np.ndarray
     evaluation: Evaluation
     rigid_lift_per_q: float
-    rigid_panel_lift_per_q: np.ndarray
+    rigid_strip_lift_per_q: np.ndarray
     unloaded: bool
+    beam: np.ndarray
 
     @property
     def nbytes(self) -> int:
-        return self.state.nbytes + self.evaluation.nbytes
+        return self.state.nbytes + self.evaluation.nbytes + self.beam.nbytes
 
 
 def _solve_jig(system: CoupledSystem) -> Jig:
@@ -65,7 +67,10 @@ def _solve_jig(system: CoupledSystem) -> Jig:
     unloaded = bool(
         np.max(np.abs(circulation)) <= math.pi * system.wing.mean_chord * NEGLIGIBLE_INCIDENCE
     )
-    return Jig(state, system.evaluate(state), lift_per_q, per_q.force[2].copy(), unloaded)
+    evaluation = system.evaluate(state)
+    beam = beam_response(evaluation, system.layout)
+    strips = per_q.per_strip(per_q.force[2], system.chordwise)
+    return Jig(state, evaluation, lift_per_q, strips, unloaded, beam)
 
 
 def jig(system: CoupledSystem) -> Jig:
@@ -73,15 +78,16 @@ def jig(system: CoupledSystem) -> Jig:
     return cached(("jig", *system.key), lambda: _solve_jig(system), lambda j: j.nbytes)
 
 
-def _linear_divergence(wing: Wing) -> float | None:
-    system = CoupledSystem(wing, 0.0)
-    # At alpha = 0 an uncambered jig carries no circulation: the classical linear problem.
-    at_rest = system.evaluate(np.zeros(system.layout.n_unknowns))
-    return divergence_pressure(at_rest, system.layout.load_rows)
+def _linear_divergence(system: CoupledSystem) -> float | None:
+    # Linearised about the undeformed wing carrying no circulation: the classical problem (for
+    # an uncambered, untwisted wing it is the jig at alpha = 0).
+    at_rest = system.at_alpha(0.0).evaluate(np.zeros(system.layout.n_unknowns))
+    return divergence_pressure(at_rest, system.layout)
 
 
-def linear_divergence_pressure(wing: Wing) -> float | None:
-    """[Pa] the classical linear divergence dynamic pressure of the unloaded jig (alpha = 0),
-    or None if the wing cannot diverge (cached per wing)."""
-    box = cached(("linear_divergence", wing.key), lambda: [_linear_divergence(wing)], lambda _: 64)
+def linear_pressure(system: CoupledSystem) -> float | None:
+    """[Pa] the classical linear divergence dynamic pressure of the undeformed, unloaded wing,
+    or None if the wing cannot diverge (cached per wing and model; alpha plays no part)."""
+    key = ("linear_divergence", system.wing.key, system.chordwise, system.deformed_axis)
+    box = cached(key, lambda: [_linear_divergence(system)], lambda _: 64)
     return box[0]

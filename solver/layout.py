@@ -1,14 +1,19 @@
 """Index arithmetic of one mesh: where each unknown, equation and parameter sits.
 
-Unknowns x (4N - 1), in this order:
-    u (N) [m]        heave at stations
-    du (N) [-]       slope u' at stations
-    theta (N) [deg]  twist at stations
-    g (N - 1) [m]    circulation per unit airspeed of each right-half panel, Gamma / V
-Equations (4N - 1), in this order:
+N structural stations, k chordwise panels per strip, M = (N - 1) k panels on the right half.
+
+Unknowns x (3N + M), in this order:
+    u (N) [m]          heave at stations
+    du (N) [-]         slope du/ds along the elastic axis
+    phi (N) [deg]      twist about the elastic axis
+    g (M) [m]          circulation per unit airspeed of each right-half panel, Gamma / V
+Equations (3N + M), in this order:
     root clamps (3), heave kinematics (N - 1), bending (N - 1), torsion (N - 1),
-    flow tangency (N - 1)
-Parameters p (5N + 1): y, chord, elastic_axis, EI, GJ (N each), alpha [deg].
+    flow tangency (M)
+Parameters p, in this order:
+    y, chord, elastic_axis, EI, GJ, jig_twist (N each), camber (N (k + 1), station-major:
+    camber / chord at each station's chordwise nodes), alpha [deg], sweep [deg],
+    deformed_axis (0: torque about the undeformed elastic axis, 1: about the heaved one).
 """
 
 from __future__ import annotations
@@ -22,21 +27,27 @@ __all__ = ["Layout"]
 
 @dataclass(frozen=True)
 class Layout:
-    """The mesh of N structural stations and its N - 1 panels."""
+    """The mesh of N structural stations and its (N - 1) k panels."""
 
     n: int
+    chordwise: int = 1
 
     @property
     def n_panels(self) -> int:
+        """M: panels of the right half-wing."""
+        return (self.n - 1) * self.chordwise
+
+    @property
+    def n_strips(self) -> int:
         return self.n - 1
 
     @property
     def n_unknowns(self) -> int:
-        return 4 * self.n - 1
+        return 3 * self.n + self.n_panels
 
     @property
     def n_parameters(self) -> int:
-        return 5 * self.n + 1
+        return 6 * self.n + self.n * (self.chordwise + 1) + 3
 
     # Unknowns
     @property
@@ -49,24 +60,35 @@ class Layout:
 
     @property
     def twist(self) -> slice:
+        """The twist about the elastic axis, phi [deg]."""
         return slice(2 * self.n, 3 * self.n)
 
     @property
     def circulation(self) -> slice:
-        return slice(3 * self.n, 4 * self.n - 1)
+        return slice(3 * self.n, 3 * self.n + self.n_panels)
+
+    @property
+    def structure(self) -> slice:
+        """Unknowns of the beam: heave, slope and twist."""
+        return slice(0, 3 * self.n)
 
     # Equations
     @property
     def bending_rows(self) -> slice:
-        return slice(3 + self.n_panels, 3 + 2 * self.n_panels)
+        return slice(3 + self.n_strips, 3 + 2 * self.n_strips)
 
     @property
     def torsion_rows(self) -> slice:
-        return slice(3 + 2 * self.n_panels, 3 + 3 * self.n_panels)
+        return slice(3 + 2 * self.n_strips, 3 + 3 * self.n_strips)
+
+    @property
+    def structure_rows(self) -> slice:
+        """Equations of the beam: clamps, kinematics, bending, torsion."""
+        return slice(0, 3 * self.n)
 
     @property
     def tangency_rows(self) -> slice:
-        return slice(3 + 3 * self.n_panels, 3 + 4 * self.n_panels)
+        return slice(3 * self.n, 3 * self.n + self.n_panels)
 
     @property
     def load_rows(self) -> np.ndarray:
@@ -74,6 +96,27 @@ class Layout:
         rows = np.arange(self.n_unknowns)
         return np.r_[rows[self.bending_rows], rows[self.torsion_rows]]
 
-    def parameters(self, arrays: tuple[np.ndarray, ...], alpha_deg: float) -> np.ndarray:
-        """(5N + 1,) the parameter vector from the wing's station arrays and alpha [deg]."""
-        return np.concatenate([*arrays, [alpha_deg]])
+    # Parameters
+    def parameters(
+        self,
+        arrays: tuple[np.ndarray, ...],
+        camber: np.ndarray,
+        alpha_deg: float,
+        sweep_deg: float,
+        deformed_axis: bool,
+    ) -> np.ndarray:
+        """(n_parameters,) from the wing's six station arrays (y, chord, elastic_axis, EI, GJ,
+        jig_twist), its camber at the chordwise nodes (N, k + 1), alpha and sweep [deg]."""
+        return np.concatenate(
+            [*arrays, np.ravel(camber), [alpha_deg, sweep_deg, 1.0 if deformed_axis else 0.0]]
+        )
+
+    def split(self, p):  # type: ignore[no-untyped-def]
+        """The parameter vector's parts (symbolic or numeric): y, chord, elastic_axis, EI, GJ,
+        jig (N each), camber (N, k + 1), alpha, sweep, deformed_axis."""
+        n, k1 = self.n, self.chordwise + 1
+        parts = [p[i * n : (i + 1) * n] for i in range(6)]
+        start = 6 * n
+        camber = p[start : start + n * k1]
+        end = start + n * k1
+        return (*parts, camber, p[end], p[end + 1], p[end + 2])

@@ -22,10 +22,12 @@ the same sequence of steps, hence the same bits, whatever was asked before.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 
 from solver.continuation import scaled_norm
 from solver.evaluation import Evaluation
@@ -44,6 +46,8 @@ class PathSettings:
     correction_floor: corrections this small are accepted whatever the move (round-off and the
         residual tolerance, in scaled units).
     max_move: largest predicted move of one step; a longer step is shortened to it.
+    jacobian_distance: a landing point farther than this from where its Jacobians were last
+        evaluated gets them evaluated afresh (the stability verdict is judged on them).
     min_step: smallest step [-], relative to the wing's pressure scale (the scale of q in the
         scaled coordinates), before the path stops.
     max_steps: accepted and rejected steps before the path stops.
@@ -54,6 +58,7 @@ class PathSettings:
     max_contraction: float = 0.5
     correction_floor: float = 1e-7
     max_move: float = 0.5
+    jacobian_distance: float = 1e-4
     min_step: float = 1e-4
     max_steps: int = 80
 
@@ -99,27 +104,24 @@ def follow(
     step = q - start_pressure
     iterations = steps = attempts = 0
     norm = float(np.max(np.abs(evaluation.residual(q_now))))
-    tangent = _tangent(evaluation, q_now)
     while True:
         remaining = q - q_now
         if remaining == 0 and norm <= tolerance:
             return PathResult(x, q_now, evaluation, True, iterations, norm, steps, "reached")
-        if attempts >= settings.max_steps or tangent is None:
-            reason = "too many steps" if tangent is not None else "singular Jacobian"
-            return PathResult(x, q_now, evaluation, False, iterations, norm, steps, reason)
+        if attempts >= settings.max_steps:
+            return PathResult(
+                x, q_now, evaluation, False, iterations, norm, steps, "too many steps"
+            )
         attempts += 1
         dq = remaining if abs(step) >= abs(remaining) else step
-        speed = scaled_norm(tangent, scale)  # predicted move per pascal
-        if abs(dq) * speed > settings.max_move:
-            dq = dq * settings.max_move / (abs(dq) * speed)
-        landed = _step(
-            evaluate, residual, x, tangent, evaluation, q_now + dq, dq, scale, tolerance, settings
-        )
+        landed = _step(evaluate, residual, x, evaluation, q_now, dq, scale, tolerance, settings)
         iterations += landed.iterations
+        if landed.shorten is not None:
+            step = dq * landed.shorten  # the predicted move was too long: shorten, not a failure
+            continue
         if landed.accepted:
             x, q_now, evaluation = landed.x, q_now + dq, landed.evaluation
             norm = landed.residual_norm
-            tangent = _tangent(evaluation, q_now)
             steps += 1
             step = dq * (2.0 if landed.iterations <= 3 else 1.0)
             continue
@@ -137,14 +139,6 @@ def follow(
             )
 
 
-def _tangent(evaluation: Evaluation, q: float) -> np.ndarray | None:
-    """dx/dq = -J^{-1} r1 along the branch, or None where J is singular."""
-    try:
-        return np.linalg.solve(evaluation.jacobian(q), -evaluation.r1)
-    except np.linalg.LinAlgError:
-        return None
-
-
 @dataclass(frozen=True)
 class _Landing:
     accepted: bool
@@ -153,33 +147,60 @@ class _Landing:
     iterations: int
     residual_norm: float
     reason: str
+    shorten: float | None = None  # the step's predicted move is too long: shorten by this
+
+
+def _factor(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """LU factors of a square matrix, or None if it is singular (or not finite)."""
+    if not np.all(np.isfinite(matrix)):
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
+        try:
+            factors = scipy.linalg.lu_factor(matrix, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError, scipy.linalg.LinAlgWarning):
+            return None
+    return factors if np.all(np.diag(factors[0]) != 0) else None
 
 
 def _step(
     evaluate: Callable[[np.ndarray], Evaluation],
     residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
     x: np.ndarray,
-    tangent: np.ndarray,
     evaluation: Evaluation,
-    q_next: float,
+    q_now: float,
     dq: float,
     scale: np.ndarray,
     tolerance: float,
     settings: PathSettings,
 ) -> _Landing:
-    """Predict along the tangent over dq, correct with Newton, judge every correction.
+    """Predict over dq, correct with Newton, judge every correction.
+
+    Predictor: one Newton step from the current equilibrium at the new q, on its Jacobians
+    re-targeted there (free: the residual is affine in q); to first order it is the tangent
+    predictor x + dq dx/dq. The first correction reuses the same factors. Later corrections use
+    the Jacobian of the latest iterate, evaluated only if the residual there has not converged:
+    the landing point carries Jacobians one correction away, re-evaluated at the landing point
+    when that correction was not small (the stability verdict is judged on them).
 
     The corrector is plain Newton (no damping: a step that needs damping is too long). Its first
     correction must be small against the predicted move and each later one must contract: then
     the landing point lies within first / (1 - contraction) of the prediction, on the branch the
     prediction followed (Deuflhard's monotonicity test for continuation correctors).
     """
-    predicted = x + dq * tangent
+    q_next = q_now + dq
+    factors = _factor(evaluation.jacobian(q_next))
+    if factors is None:
+        return _Landing(False, x, evaluation, 0, np.inf, "singular Jacobian")
+    predicted = x - scipy.linalg.lu_solve(factors, evaluation.residual(q_next), check_finite=False)
     move = scaled_norm(predicted - x, scale)
-    r0, r1 = residual(predicted)
-    # The current point's Jacobians, re-targeted to q_next, serve the first correction for free.
+    if not np.isfinite(move):
+        return _Landing(False, x, evaluation, 0, np.inf, "non-finite prediction")
+    if move > settings.max_move:
+        return _Landing(False, x, evaluation, 0, np.inf, "long", settings.max_move / move)
+    point, jacobians_at = predicted, x
+    r0, r1 = residual(point)
     current = Evaluation(r0, r1, evaluation.jacobian0, evaluation.jacobian1)
-    point = predicted
     previous = np.inf
     for iteration in range(settings.max_corrector_iterations + 1):
         r = current.residual(q_next)
@@ -187,13 +208,16 @@ def _step(
             return _Landing(False, x, evaluation, iteration, np.inf, "non-finite residual")
         norm = float(np.max(np.abs(r)))
         if norm <= tolerance:
-            return _Landing(True, point, current, iteration, norm, "accepted")
+            if scaled_norm(point - jacobians_at, scale) > settings.jacobian_distance:
+                current = evaluate(point)  # judge stability on Jacobians at the landing point
+            return _Landing(True, point, current, iteration + 1, norm, "accepted")
         if iteration == settings.max_corrector_iterations:
             break
-        try:
-            correction = np.linalg.solve(current.jacobian(q_next), r)
-        except np.linalg.LinAlgError:
-            return _Landing(False, x, evaluation, iteration, np.inf, "singular Jacobian")
+        if iteration > 0:
+            factors = _factor(current.jacobian(q_next))
+            if factors is None:
+                return _Landing(False, x, evaluation, iteration, np.inf, "singular Jacobian")
+        correction = scipy.linalg.lu_solve(factors, r, check_finite=False)
         size = scaled_norm(correction, scale)
         limit = (
             settings.max_first_correction * move
@@ -209,7 +233,11 @@ def _step(
             return _Landing(False, x, evaluation, iteration + 1, np.inf, reason)
         previous = size
         point = point - correction
-        current = evaluate(point)
+        r0, r1 = residual(point)
+        if np.max(np.abs(r0 + q_next * r1)) <= tolerance:
+            current = Evaluation(r0, r1, current.jacobian0, current.jacobian1)
+        else:
+            current, jacobians_at = evaluate(point), point
     return _Landing(
         False, x, evaluation, settings.max_corrector_iterations, np.inf, "iteration limit"
     )

@@ -87,6 +87,7 @@ def from_branch(
     equilibrium = judge(
         system,
         flight,
+        options,
         result.x,
         result.evaluation,
         iterations=iterations,

@@ -1,193 +1,248 @@
-"""The coupled aeroelastic residual of one mesh size N, built symbolically once.
+"""The coupled aeroelastic residual of one mesh, built symbolically once.
 
-Unknowns x (4N - 1), in this order:
-    u (N) [m]        heave at stations
-    du (N) [-]       slope u' at stations
-    theta (N) [deg]  twist at stations
-    g (N - 1) [m]    circulation per unit airspeed of each right-half panel, Gamma / V
-Parameters p (5N + 1): y, chord, elastic_axis, EI, GJ (N each), alpha [deg].
+Unknowns, equations and parameters: `solver.layout`. The equations, with h_i = (y_{i+1} - y_i) /
+cos(sweep) the beam's segment lengths along the elastic axis (EA):
 
-Equations (4N - 1), in this order:
-    root clamps (3)          u_0 = 0, u'_0 = 0, theta_0 = 0
+    root clamps (3)          u_0 = 0, u'_0 = 0, phi_0 = 0
     heave kinematics (N-1)   u_{i+1} - u_i - h_i (u'_i + u'_{i+1}) / 2 = 0                   [m]
     bending (N-1)            u'_{i+1} - u'_i - h_i (M_i/EI_i + M_{i+1}/EI_{i+1}) / 2 = 0     [-]
-    torsion (N-1)            theta_{i+1} - theta_i
+    torsion (N-1)            phi_{i+1} - phi_i
                                - h_i (180/pi)(T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2 = 0           [deg]
-    flow tangency (N-1)      (V_hat + induced_i) . n_i = 0                                   [-]
+    flow tangency (M)        (V_hat + induced_p) . n_p = 0                                   [-]
+
 The trapezoidal rule is AeroSandbox's ``constrain_derivative``; the tangency rows are per unit V.
+Internal loads by outboard sums over every panel p of the strips outboard of station i, with F_p
+its force at its deformed force point r_p, e_s = (sin, cos, 0) of the sweep and r_i station i's
+undeformed EA point (s_i = y_i / cos(sweep) along the EA):
+
+    M_i = sum_p Fz_p (r_p . e_s) - s_i sum_p Fz_p
+    T_i = sum_p (r_p x F_p) . e_s - d u_i sum_p (Fx_p cos(sweep) - Fy_p sin(sweep))
+
+with d = 1 when the torque is taken about the heaved EA point (`deformed_axis`), else 0 (the
+study's undeformed axis). At sweep 0, d = 0 and one chordwise panel these are the study's sums.
 
 Aerodynamic loads scale with the dynamic pressure q = rho V^2 / 2 once the circulation is written
 per unit V, so the residual is exactly affine in q:
 
     r(x; p, q) = r0(x; p) + q r1(x; p),   J = J0 + q J1.
 
-The compiled function returns r0, r1, J0, J1. Newton combines them for any q; a stored
-Jacobian is re-targeted to a new airspeed for free; and J0 v = -lambda J1 v is the divergence
-eigenproblem.
-
-The Jacobian is exact: CasADi differentiates the geometry, the aerodynamic glue and the
-horseshoe kernel (`vlm.pair_kernel`); the O(N^2) induced-velocity part is combined by the chain
-rule from the kernel's own derivatives, and the beam's outboard sums are applied as
-running sums, which keeps the work at O(N^2) instead of O(N^3).
+The compiled function returns r0, r1, J0, J1, and for trimmed flight the derivatives of r0 and
+r1 in alpha and the lift per unit q with its derivatives. The Jacobian is exact: CasADi
+differentiates the lattice geometry, the aerodynamic glue and the horseshoe kernel
+(`vlm.pair_kernel`); the O(M^2) induced-velocity part is combined by the chain rule from the
+kernel's own derivatives, and the beam's outboard sums are applied as running sums, which keeps
+the work at O(M^2) instead of O(M^3).
 """
 
 from __future__ import annotations
 
+import functools
+
 import casadi as ca
 import numpy as np
 
-from solver.geometry import panel_geometry, station_points
+from solver.geometry import DEG, Lattice, lattice
 from solver.layout import Layout
 from solver.vlm import induced_velocities, source_columns
 
 __all__ = [
+    "MODEL_VERSION",
     "build_coupled_function",
     "build_panel_loads_function",
     "build_residual_function",
-    "MODEL_VERSION",
 ]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "3"
+MODEL_VERSION = "4"
 
 DEG_PER_RAD = 180.0 / np.pi
+# Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
+# (r x F) . e_s [m^3 per unit q].
+_LOADS = 5
 
 
-def _split_parameters(p: ca.MX | ca.SX, n: int) -> tuple:
-    """y, chord, elastic_axis, EI, GJ (N each) and alpha [deg] from p."""
-    return (
-        p[0:n],
-        p[n : 2 * n],
-        p[2 * n : 3 * n],
-        p[3 * n : 4 * n],
-        p[4 * n : 5 * n],
-        p[5 * n],
-    )
-
-
-def _freestream_direction(alpha_deg: ca.SX) -> ca.SX:
+def _freestream(alpha_deg: ca.SX) -> ca.SX:
     """Unit freestream velocity in geometry axes, (3,) [-]."""
-    alpha = alpha_deg * (np.pi / 180.0)
+    alpha = alpha_deg * DEG
     return ca.vertcat(ca.cos(alpha), 0, ca.sin(alpha))
 
 
-def _geometry_function(n: int) -> ca.Function:
-    """(heave, twist, y, chord, elastic_axis) -> points and their derivatives w.r.t. [u; theta]."""
-    heave, twist, y, chord, ea = (ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea"))
-    deformation = ca.vertcat(heave, twist)
-    points = station_points(heave, twist, y, chord, ea)
-    panels = panel_geometry(points)
-    outputs = [points.vortex_vertex, panels.collocation, panels.vortex_center]
-    jacobians = [ca.jacobian(ca.vec(out), deformation) for out in outputs]
-    return ca.Function(
-        "wing_geometry",
-        [heave, twist, y, chord, ea],
-        outputs + jacobians,
-    )
+class _Parameters:
+    """The parameter vector's parts, as SX symbols of the glue functions."""
+
+    def __init__(self, layout: Layout) -> None:
+        n, k1 = layout.n, layout.chordwise + 1
+        self.layout = layout
+        self.y, self.chord, self.ea, self.jig = (ca.SX.sym(s, n) for s in ("y", "c", "ea", "jig"))
+        self.camber = ca.SX.sym("camber", n * k1)
+        self.sweep = ca.SX.sym("sweep")
+
+    @property
+    def inputs(self) -> list[ca.SX]:
+        return [self.y, self.chord, self.ea, self.jig, self.camber, self.sweep]
+
+    def lattice(self, z: ca.SX) -> Lattice:
+        n = self.layout.n
+        camber = ca.reshape(self.camber, self.layout.chordwise + 1, n).T
+        return lattice(
+            z[:n],
+            z[n : 2 * n],
+            z[2 * n :],
+            self.y,
+            self.chord,
+            self.ea,
+            self.jig,
+            camber,
+            self.sweep,
+            self.layout.chordwise,
+        )
 
 
-def _aero_loads(n: int, heave, twist, circulation, y, chord, ea, alpha_deg, induced_forces):
-    """Per-panel forces per unit q from the induced velocity at the vortex centres.
+# The symbolic pieces are pure functions of the mesh: each of the three compiled functions uses
+# them, so they are built once per mesh, not three times.
+@functools.lru_cache(maxsize=8)
+def _lattice_function(layout: Layout) -> ca.Function:
+    """(z, parameters) -> vortex vertices, collocation and force points, and their derivatives
+    w.r.t. z = [u; u'; phi] (3N)."""
+    params = _Parameters(layout)
+    z = ca.SX.sym("z", 3 * layout.n)
+    lat = params.lattice(z)
+    outputs = [lat.left, lat.right, lat.collocation, lat.center]
+    jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
+    return ca.Function("wing_lattice", [z, *params.inputs], outputs + jacobians)
 
-    Returns (force (3, M) [m^2], torque (1, M) [m^3], panel geometry). Kutta-Joukowski:
-    F = rho (V_local x l) Gamma = 2 q (V_hat_local x l) g.
-    """
-    m = n - 1
-    points = station_points(heave, twist, y, chord, ea)
-    panels = panel_geometry(points)
-    v_local = ca.repmat(_freestream_direction(alpha_deg), 1, m) + ca.reshape(induced_forces, 3, m)
-    leg = panels.bound_leg
-    g_row = circulation.T
+
+def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep: ca.SX):
+    """Per-panel forces per unit q (Kutta-Joukowski F = rho (V_local x l) Gamma = 2 q (V_hat_local
+    x l) g) and their moments about the elastic axis: ((3, M) force [m^2], (5M,) loads)."""
+    m = lat.leg.shape[1]
+    v_local = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced, 3, m)
+    leg, g_row = lat.leg, g.T
     force = 2 * ca.vertcat(
         (v_local[1, :] * leg[2, :] - v_local[2, :] * leg[1, :]) * g_row,
         (v_local[2, :] * leg[0, :] - v_local[0, :] * leg[2, :]) * g_row,
         (v_local[0, :] * leg[1, :] - v_local[1, :] * leg[0, :]) * g_row,
     )
-    center = panels.vortex_center
-    # y-moment about the origin = torque about the elastic axis (which lies on the y axis).
-    torque = center[2, :] * force[0, :] - center[0, :] * force[2, :]
-    return force, torque, points, panels
+    e_s = ca.vertcat(ca.sin(sweep * DEG), ca.cos(sweep * DEG), 0)
+    center = lat.center
+    arm = e_s[0] * center[0, :] + e_s[1] * center[1, :]
+    moment = ca.vertcat(
+        center[1, :] * force[2, :] - center[2, :] * force[1, :],
+        center[2, :] * force[0, :] - center[0, :] * force[2, :],
+        center[0, :] * force[1, :] - center[1, :] * force[0, :],
+    )
+    torque = e_s[0] * moment[0, :] + e_s[1] * moment[1, :]
+    loads = ca.vertcat(force[0, :].T, force[1, :].T, force[2, :].T, (force[2, :] * arm).T, torque.T)
+    return force, loads
 
 
-def _aero_function(n: int, with_jacobians: bool) -> ca.Function:
-    """Tangency residuals and beam loads given the induced velocities.
+@functools.lru_cache(maxsize=8)
+def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
+    """Tangency residuals and per-panel loads given the induced velocities.
 
-    Outputs: tangency (M,) [-]; loads (3M,) per unit q: vertical force Fz [m^2], its moment
-    Fz * y_load about the root [m^3], torque about the elastic axis [m^3]. With `with_jacobians`
-    also their partial derivatives w.r.t. z = [u; theta; g] and w.r.t. the induced velocities.
+    Outputs: tangency (M,) [-]; loads (5M,) per unit q (see _LOADS). With `with_jacobians` also
+    their partial derivatives w.r.t. w = [u; u'; phi; g], w.r.t. the induced velocities, and
+    w.r.t. alpha.
     """
-    m = n - 1
-    heave, twist, y, chord, ea = (ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea"))
-    circulation = ca.SX.sym("g", m)
+    m = layout.n_panels
+    params = _Parameters(layout)
+    z = ca.SX.sym("z", 3 * layout.n)
+    g = ca.SX.sym("g", m)
     alpha_deg = ca.SX.sym("alpha")
     induced_tangency = ca.SX.sym("induced_tangency", 3 * m)
     induced_forces = ca.SX.sym("induced_forces", 3 * m)
-    force, torque, _, panels = _aero_loads(
-        n, heave, twist, circulation, y, chord, ea, alpha_deg, induced_forces
-    )
-    v_collocation = ca.repmat(_freestream_direction(alpha_deg), 1, m) + ca.reshape(
-        induced_tangency, 3, m
-    )
-    tangency = ca.sum1(v_collocation * panels.normal).T
-    lift_force = force[2, :]
-    loads = ca.vertcat(lift_force.T, (lift_force * panels.vortex_center[1, :]).T, torque.T)
+    lat = params.lattice(z)
+    _, loads = _panel_loads(lat, g, alpha_deg, induced_forces, params.sweep)
+    v_collocation = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced_tangency, 3, m)
+    tangency = ca.sum1(v_collocation * lat.normal).T
     outputs = [tangency, loads]
     if with_jacobians:
-        z = ca.vertcat(heave, twist, circulation)
+        w = ca.vertcat(z, g)
         outputs += [
-            ca.jacobian(tangency, z),
+            ca.jacobian(tangency, w),
             ca.jacobian(tangency, induced_tangency),
-            ca.jacobian(loads, z),
+            ca.jacobian(loads, w),
             ca.jacobian(loads, induced_forces),
+            ca.jacobian(tangency, alpha_deg),
+            ca.jacobian(loads, alpha_deg),
         ]
     return ca.Function(
         "aero_glue" if with_jacobians else "aero_glue_values",
-        [heave, twist, circulation, y, chord, ea, alpha_deg, induced_tangency, induced_forces],
+        [z, g, *params.inputs, alpha_deg, induced_tangency, induced_forces],
         outputs,
     )
 
 
-def _outboard_sum(panel_rows: ca.MX) -> ca.MX:
-    """(N-1, k) per-panel rows -> (N, k): row i sums panels j >= i (zero at the tip).
+def _outboard_sum(strip_rows: ca.MX) -> ca.MX:
+    """(N-1, c) per-strip rows -> (N, c): row i sums strips j >= i (zero at the tip).
 
-    A running sum from the tip, O(N k), where a triangular matrix product would be O(N^2 k).
+    A running sum from the tip, O(N c), where a triangular matrix product would be O(N^2 c).
     """
-    m, k = panel_rows.shape
-    running = ca.MX(1, k)
+    m, c = strip_rows.shape
+    running = ca.MX(1, c)
     rows = [running]
     for j in reversed(range(m)):
-        running = running + panel_rows[j, :]
+        running = running + strip_rows[j, :]
         rows.append(running)
     return ca.vertcat(*reversed(rows))
 
 
-def _beam_load_rows(loads: ca.MX, y: ca.MX, ei: ca.MX, gj: ca.MX) -> ca.MX:
-    """The q-proportional part of the bending and torsion equations, (2(N-1), k).
+class _Beam:
+    """The beam's load rows from per-panel loads (values or derivative rows: all linear but the
+    deformed-axis term, which the Jacobian adds by hand)."""
 
-    `loads` (3M, k) holds per-panel [Fz; Fz y_load; torque] per unit q, or their derivative
-    rows (k = number of unknowns): every operation here is linear, so the same code gives the
-    r1 rows and the J1 rows. Internal loads by outboard sums (study section 14.3):
-    M_i = sum_{j>=i} Fz_j y_j - y_i S_i, T_i = sum_{j>=i} tau_j; then the trapezoidal rule.
-    """
-    m = loads.shape[0] // 3
-    shear = _outboard_sum(loads[:m, :])
-    bending = _outboard_sum(loads[m : 2 * m, :]) - ca.mtimes(ca.diag(y), shear)
-    torsion = _outboard_sum(loads[2 * m :, :])
-    h = y[1:] - y[:-1]
+    def __init__(self, layout: Layout, y: ca.MX, ei: ca.MX, gj: ca.MX, sweep: ca.MX) -> None:
+        self.layout = layout
+        cos_sweep = ca.cos(sweep * DEG)
+        self.sin_sweep, self.cos_sweep = ca.sin(sweep * DEG), cos_sweep
+        self.s = y / cos_sweep  # [m] arc length along the EA
+        self.h = self.s[1:] - self.s[:-1]
+        self.ei, self.gj = ei, gj
+        k, strips = layout.chordwise, layout.n_strips
+        # Panels to strips: strip i holds panels i k .. i k + k - 1.
+        self.strips = ca.DM(np.kron(np.eye(strips), np.ones((1, k))))
 
-    def trapezoid(integrand: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
-        """-scale h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}), row by row."""
-        inner = ca.diag(-scale * h / (2 * stiffness[:-1]))
-        outer = ca.diag(-scale * h / (2 * stiffness[1:]))
-        return ca.mtimes(inner, integrand[:-1, :]) + ca.mtimes(outer, integrand[1:, :])
+    def _outboard(self, loads: ca.MX, part: int) -> ca.MX:
+        m = self.layout.n_panels
+        return _outboard_sum(ca.mtimes(self.strips, loads[part * m : (part + 1) * m, :]))
 
-    return ca.vertcat(trapezoid(bending, ei, 1.0), trapezoid(torsion, gj, DEG_PER_RAD))
+    def bending(self, loads: ca.MX) -> ca.MX:
+        """(N, c) M_i, linear in the loads."""
+        return self._outboard(loads, 3) - ca.mtimes(ca.diag(self.s), self._outboard(loads, 2))
+
+    def axis_force(self, loads: ca.MX) -> ca.MX:
+        """(N, c) outboard sum of Fx cos(sweep) - Fy sin(sweep)."""
+        return self.cos_sweep * self._outboard(loads, 0) - self.sin_sweep * self._outboard(loads, 1)
+
+    def rows(self, bending: ca.MX, torque: ca.MX) -> ca.MX:
+        """(2(N-1), c): -h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) for M/EI and degrees(T/GJ)."""
+
+        def trapezoid(integrand: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
+            inner = ca.diag(-scale * self.h / (2 * stiffness[:-1]))
+            outer = ca.diag(-scale * self.h / (2 * stiffness[1:]))
+            return ca.mtimes(inner, integrand[:-1, :]) + ca.mtimes(outer, integrand[1:, :])
+
+        return ca.vertcat(trapezoid(bending, self.ei, 1.0), trapezoid(torque, self.gj, DEG_PER_RAD))
+
+    def load_rows(self, loads: ca.MX, heave: ca.MX, deformed: ca.MX) -> ca.MX:
+        """(2(N-1), 1) the q-proportional part of the bending and torsion equations."""
+        torque = self._outboard(loads, 4) - deformed * heave * self.axis_force(loads)
+        return self.rows(self.bending(loads), torque)
+
+    def load_rows_jacobian(
+        self, loads: ca.MX, loads_x: ca.MX, heave: ca.MX, deformed: ca.MX, heave_columns: ca.DM
+    ) -> ca.MX:
+        """(2(N-1), nx) d(load_rows)/dx from the loads and their derivative rows (5M, nx)."""
+        torque_x = self._outboard(loads_x, 4) - deformed * (
+            ca.mtimes(ca.diag(heave), self.axis_force(loads_x))
+            + ca.mtimes(ca.diag(self.axis_force(loads)), heave_columns)
+        )
+        return self.rows(self.bending(loads_x), torque_x)
 
 
-def _structure_rows(layout: Layout, x: ca.MX, y: ca.MX) -> ca.MX:
+def _structure_rows(layout: Layout, x: ca.MX, h: ca.MX) -> ca.MX:
     """Root clamps, heave kinematics and the load-free part of bending and torsion rows."""
     heave, slope, twist = x[layout.heave], x[layout.slope], x[layout.twist]
-    h = y[1:] - y[:-1]
     return ca.vertcat(
         heave[0],
         slope[0],
@@ -199,53 +254,65 @@ def _structure_rows(layout: Layout, x: ca.MX, y: ca.MX) -> ca.MX:
 
 
 def _induced_derivative(
-    g_dfield: ca.MX, g_dleft: ca.MX, g_dright: ca.MX, field_d: ca.MX, vertex_d: ca.MX, m: int
+    g_dfield: ca.MX,
+    g_dleft: ca.MX,
+    g_dright: ca.MX,
+    field_z: ca.MX,
+    left_z: ca.MX,
+    right_z: ca.MX,
+    m: int,
 ) -> ca.MX:
-    """d(induced velocity)/d[u; theta] by the chain rule through field points and vertices.
+    """d(induced velocity)/dz by the chain rule through field points and vortex vertices.
 
-    g_dfield (3M, 3), g_dleft/g_dright (3M, 3M) from `vlm.source_columns`; field_d (3M, 2N) and
-    vertex_d (3N, 2N) the geometry derivatives. Panel k's left vertex is station k, its right
-    vertex station k + 1.
+    g_dfield (3M, 3), g_dleft/g_dright (3M, 3M) from `vlm.source_columns`; field_z, left_z,
+    right_z (3M, 3N) the lattice's derivatives (rows 3p + c: point p's coordinate c).
     """
-    pad = ca.MX(3 * m, 3)
-    d_vertices = ca.horzcat(g_dleft, pad) + ca.horzcat(pad, g_dright)
-    result = ca.mtimes(d_vertices, vertex_d)
+    result = ca.mtimes(g_dleft, left_z) + ca.mtimes(g_dright, right_z)
     for component in range(3):
         # Row 3i + c of the field derivative uses field point i's coordinate `component`.
         rows = [3 * i + component for i in range(m) for _ in range(3)]
-        result += ca.mtimes(ca.diag(g_dfield[:, component]), field_d[rows, :])
+        result += ca.mtimes(ca.diag(g_dfield[:, component]), field_z[rows, :])
     return result
 
 
 class _Symbols:
     """Symbolic unknowns and parameters of one mesh, split into named parts."""
 
-    def __init__(self, n: int) -> None:
-        self.layout = Layout(n)
-        self.m = n - 1
-        self.x = ca.MX.sym("x", self.layout.n_unknowns)
-        self.p = ca.MX.sym("p", self.layout.n_parameters)
-        self.heave = self.x[self.layout.heave]
-        self.twist = self.x[self.layout.twist]
-        self.circulation = self.x[self.layout.circulation]
-        self.y, self.chord, self.ea, self.ei, self.gj, self.alpha_deg = _split_parameters(self.p, n)
-        # The horseshoe of panel k induces nothing of its bound leg at its own vortex centre.
-        self.all_bound_legs = ca.DM.ones(self.m, self.m)
-        self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
-
-    def geometry(self) -> tuple[ca.MX, ...]:
-        """vertex, collocation, center and their derivatives w.r.t. [u; theta]."""
-        geometry = _geometry_function(self.layout.n)
-        return tuple(geometry(self.heave, self.twist, self.y, self.chord, self.ea))  # type: ignore[arg-type]
-
-    def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
-        return _aero_function(self.layout.n, with_jacobians)(
-            self.heave,
-            self.twist,
-            self.circulation,
+    def __init__(self, layout: Layout) -> None:
+        self.layout = layout
+        self.m = layout.n_panels
+        self.x = ca.MX.sym("x", layout.n_unknowns)
+        self.p = ca.MX.sym("p", layout.n_parameters)
+        self.z = self.x[layout.structure]
+        self.heave = self.x[layout.heave]
+        self.circulation = self.x[layout.circulation]
+        (
             self.y,
             self.chord,
             self.ea,
+            self.ei,
+            self.gj,
+            self.jig,
+            self.camber,
+            self.alpha_deg,
+            self.sweep,
+            self.deformed,
+        ) = layout.split(self.p)
+        self.geometry_inputs = [self.y, self.chord, self.ea, self.jig, self.camber, self.sweep]
+        self.beam = _Beam(layout, self.y, self.ei, self.gj, self.sweep)
+        # The horseshoe of panel p induces nothing of its bound leg at its own force point.
+        self.all_bound_legs = ca.DM.ones(self.m, self.m)
+        self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
+
+    def lattice(self) -> tuple[ca.MX, ...]:
+        """left, right, collocation, center and their derivatives w.r.t. z."""
+        return tuple(_lattice_function(self.layout)(self.z, *self.geometry_inputs))  # type: ignore[arg-type]
+
+    def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
+        return _aero_function(self.layout, with_jacobians)(
+            self.z,
+            self.circulation,
+            *self.geometry_inputs,
             self.alpha_deg,
             induced_tangency,
             induced_forces,
@@ -253,74 +320,106 @@ class _Symbols:
 
     def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
         """r0 and r1 from the aerodynamic outputs."""
-        m = self.m
-        r0 = ca.vertcat(_structure_rows(self.layout, self.x, self.y), tangency)
+        n_strips = self.layout.n_strips
+        r0 = ca.vertcat(_structure_rows(self.layout, self.x, self.beam.h), tangency)
         r1 = ca.vertcat(
-            ca.MX(3 + m, 1), _beam_load_rows(loads, self.y, self.ei, self.gj), ca.MX(m, 1)
+            ca.MX(3 + n_strips, 1),
+            self.beam.load_rows(loads, self.heave, self.deformed),
+            ca.MX(self.m, 1),
         )
         return r0, r1
 
+    def lift(self, loads: ca.MX) -> ca.MX:
+        """Lift of both halves per unit q [m^2]: 2 sum (Fz cos(alpha) - Fx sin(alpha))."""
+        m, alpha = self.m, self.alpha_deg * DEG
+        return 2 * (
+            ca.cos(alpha) * ca.sum1(loads[2 * m : 3 * m, :]) - ca.sin(alpha) * ca.sum1(loads[:m, :])
+        )
 
-def build_coupled_function(n: int) -> ca.Function:
-    """(x, p) -> (r0, r1, J0, J1), all dense, for N stations. See the module docstring."""
-    sym = _Symbols(n)
-    m, nx = sym.m, sym.layout.n_unknowns
-    vertex, collocation, center, vertex_d, collocation_d, center_d = sym.geometry()
+
+def build_coupled_function(layout: Layout) -> ca.Function:
+    """(x, p) -> r0, r1, J0, J1 (dense), and for trim r0_alpha, r1_alpha (per degree), lift
+    (per unit q), lift_x (1, n) and lift_alpha. See the module docstring."""
+    sym = _Symbols(layout)
+    m, n, nx = sym.m, layout.n, layout.n_unknowns
+    left, right, collocation, center, left_z, right_z, collocation_z, center_z = sym.lattice()
     sources = source_columns(m)
-    left, right, g_row = vertex[:, :-1], vertex[:, 1:], sym.circulation.T
+    g_row = sym.circulation.T
     ind_t, infl_t, dfield_t, dleft_t, dright_t = sources(
         collocation, sym.all_bound_legs, left, right, g_row
     )
     ind_f, infl_f, dfield_f, dleft_f, dright_f = sources(
         center, sym.no_self_bound_leg, left, right, g_row
     )
-    # Induced velocities w.r.t. z = [u; theta; g].
-    ind_t_z = ca.horzcat(
-        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_d, vertex_d, m), infl_t
+    # Induced velocities w.r.t. x = [z; g].
+    ind_t_x = ca.horzcat(
+        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_z, left_z, right_z, m), infl_t
     )
-    ind_f_z = ca.horzcat(
-        _induced_derivative(dfield_f, dleft_f, dright_f, center_d, vertex_d, m), infl_f
+    ind_f_x = ca.horzcat(
+        _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
     )
-    tangency, loads, tangency_z, tangency_ind, loads_z, loads_ind = sym.aero(True, ind_t, ind_f)
-    tangency_z = tangency_z + ca.mtimes(tangency_ind, ind_t_z)
-    loads_z = loads_z + ca.mtimes(loads_ind, ind_f_z)
-
-    def z_to_x(rows_z: ca.MX) -> ca.MX:
-        """Columns [u, theta, g] -> [u, u', theta, g] (aerodynamics never sees the slope)."""
-        return ca.horzcat(rows_z[:, :n], ca.MX(rows_z.shape[0], n), rows_z[:, n:])
-
+    tangency, loads, tangency_w, tangency_ind, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
+        True, ind_t, ind_f
+    )
+    tangency_x = tangency_w + ca.mtimes(tangency_ind, ind_t_x)
+    loads_x = loads_w + ca.mtimes(loads_ind, ind_f_x)
     r0, r1 = sym.residual(tangency, loads)
-    structure = _structure_rows(sym.layout, sym.x, sym.y)
-    j0 = ca.vertcat(ca.jacobian(structure, sym.x), z_to_x(tangency_z))
+    structure = _structure_rows(layout, sym.x, sym.beam.h)
+    heave_columns = ca.DM(np.eye(n, nx))
+    j0 = ca.vertcat(ca.jacobian(structure, sym.x), tangency_x)
     j1 = ca.vertcat(
-        ca.MX(3 + m, nx),
-        _beam_load_rows(z_to_x(loads_z), sym.y, sym.ei, sym.gj),
+        ca.MX(3 + layout.n_strips, nx),
+        sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, sym.deformed, heave_columns),
         ca.MX(m, nx),
     )
+    r0_alpha = ca.vertcat(ca.MX(3 * n, 1), tangency_a)
+    r1_alpha = ca.vertcat(
+        ca.MX(3 + layout.n_strips, 1),
+        sym.beam.rows(
+            sym.beam.bending(loads_a),
+            sym.beam._outboard(loads_a, 4)
+            - sym.deformed * sym.heave * sym.beam.axis_force(loads_a),
+        ),
+        ca.MX(m, 1),
+    )
+    lift = sym.lift(loads)
+    lift_x = sym.lift(loads_x)
+    alpha = sym.alpha_deg * DEG
+    # d lift / d alpha [per degree]: through the loads, and through the wind axes' rotation.
+    lift_alpha = sym.lift(loads_a) - 2 * DEG * (
+        ca.sin(alpha) * ca.sum1(loads[2 * m : 3 * m]) + ca.cos(alpha) * ca.sum1(loads[:m])
+    )
+    outputs = [r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha]
     return ca.Function(
-        f"flexwing_coupled_{n}",
+        f"flexwing_coupled_{_tag(layout)}",
         [sym.x, sym.p],
-        [ca.densify(r0), ca.densify(r1), ca.densify(j0), ca.densify(j1)],
+        [ca.densify(out) for out in outputs],
         ["x", "p"],
-        ["r0", "r1", "J0", "J1"],
+        ["r0", "r1", "J0", "J1", "r0_alpha", "r1_alpha", "lift", "lift_x", "lift_alpha"],
     )
 
 
-def _induced_values(sym: _Symbols, vertex: ca.MX, field: ca.MX, weights: ca.DM) -> ca.MX:
+def _tag(layout: Layout) -> str:
+    return f"{layout.n}_{layout.chordwise}"
+
+
+def _induced_values(
+    sym: _Symbols, left: ca.MX, right: ca.MX, field: ca.MX, weights: ca.DM
+) -> ca.MX:
     induced = induced_velocities(sym.m)
-    return induced(field, weights, vertex[:, :-1], vertex[:, 1:], sym.circulation.T)
+    return induced(field, weights, left, right, sym.circulation.T)
 
 
-def build_residual_function(n: int) -> ca.Function:
+def build_residual_function(layout: Layout) -> ca.Function:
     """(x, p) -> (r0, r1): the residual alone, without derivatives (line searches, checks)."""
-    sym = _Symbols(n)
-    vertex, collocation, center, *_ = sym.geometry()
-    ind_t = _induced_values(sym, vertex, collocation, sym.all_bound_legs)
-    ind_f = _induced_values(sym, vertex, center, sym.no_self_bound_leg)
+    sym = _Symbols(layout)
+    left, right, collocation, center, *_ = sym.lattice()
+    ind_t = _induced_values(sym, left, right, collocation, sym.all_bound_legs)
+    ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
     tangency, loads = sym.aero(False, ind_t, ind_f)
     r0, r1 = sym.residual(tangency, loads)
     return ca.Function(
-        f"flexwing_residual_{n}",
+        f"flexwing_residual_{_tag(layout)}",
         [sym.x, sym.p],
         [ca.densify(r0), ca.densify(r1)],
         ["x", "p"],
@@ -328,31 +427,34 @@ def build_residual_function(n: int) -> ca.Function:
     )
 
 
-def build_panel_loads_function(n: int) -> ca.Function:
-    """(x, p) -> per-unit-q panel forces, torques, vortex centres and vortex vertices.
+def build_panel_loads_function(layout: Layout) -> ca.Function:
+    """(x, p) -> per-unit-q panel forces and moments, force points and quarter-chord points.
 
-    Outputs: force (3, N-1) [m^2] (times q gives N), torque (1, N-1) [m^3] (times q gives N m),
-    vortex_center (3, N-1) [m], vortex_vertex (3, N) [m]; right half-wing, root to tip.
+    Outputs: force (3, M) [m^2] (times q gives N), torque (1, M) [m^3] ((r x F) . e_s about the
+    undeformed EA, times q gives N m), center (3, M) [m] force points, quarter_chord (3, N) [m]
+    stations' quarter-chord points; right half-wing, panels i k + j.
     """
-    sym = _Symbols(n)
-    vertex, _, center, *_ = sym.geometry()
-    induced = _induced_values(sym, vertex, center, sym.no_self_bound_leg)
-    sx_args = [ca.SX.sym(name, n) for name in ("u", "theta", "y", "c", "ea")]
-    g_sx, alpha_sx = ca.SX.sym("g", sym.m), ca.SX.sym("alpha")
-    induced_sx = ca.SX.sym("induced", 3 * sym.m)
-    force, torque, _, _ = _aero_loads(
-        n, sx_args[0], sx_args[1], g_sx, sx_args[2], sx_args[3], sx_args[4], alpha_sx, induced_sx
+    sym = _Symbols(layout)
+    m = sym.m
+    left, right, _, center, *_ = sym.lattice()
+    ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
+    params = _Parameters(layout)
+    z, g, alpha = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m), ca.SX.sym("alpha")
+    induced = ca.SX.sym("induced", 3 * m)
+    lat = params.lattice(z)
+    force, loads = _panel_loads(lat, g, alpha, induced, params.sweep)
+    panel = ca.Function(
+        "panel_forces",
+        [z, g, *params.inputs, alpha, induced],
+        [force, loads[4 * m :].T, lat.quarter_chord],
     )
-    loads = ca.Function(
-        "panel_forces", [*sx_args[:2], g_sx, *sx_args[2:], alpha_sx, induced_sx], [force, torque]
-    )
-    force_mx, torque_mx = loads(
-        sym.heave, sym.twist, sym.circulation, sym.y, sym.chord, sym.ea, sym.alpha_deg, induced
+    force_mx, torque_mx, quarter_mx = panel(
+        sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f
     )
     return ca.Function(
-        f"flexwing_panel_loads_{n}",
+        f"flexwing_panel_loads_{_tag(layout)}",
         [sym.x, sym.p],
-        [force_mx, torque_mx, center, vertex],
+        [force_mx, torque_mx, center, quarter_mx],
         ["x", "p"],
-        ["force", "torque", "vortex_center", "vortex_vertex"],
+        ["force", "torque", "center", "quarter_chord"],
     )

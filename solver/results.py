@@ -18,7 +18,7 @@ from typing import Any, Literal
 import numpy as np
 
 from solver.evaluation import Evaluation
-from solver.inputs import FlightCondition, Wing
+from solver.inputs import FlightCondition, SolverOptions, Wing
 
 __all__ = [
     "DivergenceSummary",
@@ -55,8 +55,15 @@ class Stations:
 
     y: np.ndarray = quantity("m", "station positions")
     heave: np.ndarray = quantity("m", "vertical displacement, positive up")
-    slope: np.ndarray = quantity("-", "heave slope du/dy")
-    twist: np.ndarray = quantity("deg", "twist about the elastic axis, nose-up > 0")
+    slope: np.ndarray = quantity("-", "heave slope du/ds along the elastic axis")
+    twist: np.ndarray = quantity(
+        "deg",
+        "elastic twist the flow sees (streamwise, nose-up > 0): axis_twist cos(sweep) - "
+        "degrees(slope) sin(sweep); the jig twist comes on top of it",
+    )
+    axis_twist: np.ndarray = quantity(
+        "deg", "twist about the elastic axis, nose-up > 0 (equal to twist when unswept)"
+    )
     shear: np.ndarray = quantity("N", "vertical shear force carried at the station")
     bending_moment: np.ndarray = quantity("N m", "flapwise bending moment")
     torque: np.ndarray = quantity("N m", "torque about the elastic axis")
@@ -64,12 +71,15 @@ class Stations:
 
 @dataclass(frozen=True, eq=False)
 class Panels:
-    """Aerodynamic loads on the N - 1 right-half panels (strips between stations), root to tip."""
+    """Aerodynamic loads on the N - 1 right-half strips between stations (each the sum of its
+    chordwise panels), root to tip."""
 
-    y: np.ndarray = quantity("m", "spanwise load location (deformed bound vortex)")
-    lift: np.ndarray = quantity("N", "vertical force on the panel")
+    y: np.ndarray = quantity(
+        "m", "spanwise load location (mean of the strip's deformed force points)"
+    )
+    lift: np.ndarray = quantity("N", "vertical force on the strip")
     lift_per_span: np.ndarray = quantity("N/m", "vertical force per jig strip width")
-    torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+    torque: np.ndarray = quantity("N m", "torque about the undeformed elastic axis")
     rigid_lift_per_span: np.ndarray = quantity(
         "N/m", "the rigid jig's vertical force per strip width at the same condition"
     )
@@ -97,9 +107,13 @@ class Totals:
         "uncambered, untwisted wing, or within 1e-10 rad of it)",
     )
     tip_heave: float = quantity("m", "heave at the tip")
-    tip_twist: float = quantity("deg", "twist at the tip")
+    tip_twist: float = quantity("deg", "elastic twist the flow sees at the tip (streamwise)")
     root_bending_moment: float = quantity("N m", "bending moment at the root")
     root_torque: float = quantity("N m", "torque at the root")
+    pitching_moment: float = quantity(
+        "N m",
+        "pitching moment (about y, nose-up > 0) of both halves about the root's elastic axis point",
+    )
 
 
 @dataclass(frozen=True)
@@ -164,6 +178,7 @@ class Equilibrium:
 
     wing: Wing = internal()
     flight: FlightCondition = internal()
+    options: SolverOptions = internal()  # how it was modelled and solved
     state: np.ndarray = internal()  # (n,) unknowns, see solver.layout
     evaluation: Evaluation = internal()  # r0, r1, J0, J1 at `state`
     stations: Stations = quantity("", "deformation and internal loads at the stations")

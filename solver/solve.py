@@ -66,7 +66,7 @@ def solve(
     options = options or SolverOptions()
     if hint is not None and initial_guess is not None:
         raise ValueError("give an initial_guess or a hint, not both")
-    system = CoupledSystem(wing, flight.alpha)
+    system = CoupledSystem.of(wing, flight.alpha, options)
     with numerical_failures_as(flight.velocity):
         if initial_guess is not None:
             equilibrium = _from_initial_guess(system, flight, initial_guess, options, started)
@@ -95,7 +95,8 @@ def _usable(system: CoupledSystem, hint: Equilibrium | None) -> Equilibrium | No
     """The hint if it is a stable jig-branch answer of this wing at this alpha, else None."""
     if hint is None:
         return None
-    same = hint.wing.key == system.wing.key and hint.flight.alpha + 0.0 == system.alpha + 0.0
+    hinted = CoupledSystem.of(hint.wing, hint.flight.alpha, hint.options)
+    same = hinted.key == system.key
     on_branch = hint.stability.branch == "jig" and hint.stability.stable
     return hint if same and on_branch else None
 
@@ -133,6 +134,7 @@ def _on_branch(
         equilibrium = judge(
             system,
             flight,
+            options,
             path.x,
             path.evaluation,
             iterations=path.iterations,
@@ -181,6 +183,7 @@ def _from_initial_guess(
     return judge(
         system,
         flight,
+        options,
         result.x,
         result.evaluation,
         iterations=result.iterations,

@@ -7,15 +7,24 @@ lambda for which J0 + lambda J1 is singular,
     J0 v = -lambda J1 v,
 
 and an equilibrium at q is statically stable when lambda > q (the margin q / lambda is below 1).
-J1 is non-zero only in the load rows (bending and torsion: the loads enter nowhere else), so with
-E selecting those m rows (J1 = E K) the non-zero eigenvalues mu = 1/lambda of -J0^{-1} J1 are
-those of the small m x m matrix G = -K J0^{-1} E.
+J1 is non-zero only in the m load rows (bending and torsion: the loads enter nowhere else), so
+with E selecting those rows (J1 = E K) the non-zero eigenvalues mu = 1/lambda of -J0^{-1} J1 are
+those of the m x m matrix G = -K J0^{-1} E.
+
+G is built block by block. The unknowns split into the structure's (heave, slope, twist) and the
+circulations, the equations into the structure's (clamps, kinematics, bending, torsion) and flow
+tangency; in J0 the structure's equations do not involve the circulations, so
+
+    J0 = [[A, 0], [T_s, T_g]],   G = -(K_s - K_g T_g^{-1} T_s) A^{-1} E_s,
+
+where A (the clamped beam, a function of the mesh alone) gives the beam's response
+P = A^{-1} E_s once per wing, and each verdict needs only the small tangency block T_g (the
+lattice's influence matrix) factorised: 3-5 times fewer operations than with all of J0.
 
 The eigenvalue that matters is the largest positive real mu. For a wing that can diverge it is
 almost always also the largest in modulus, which power iteration on G finds in a few dozen cheap
-products; the full nonsymmetric eigenvalue solve (0.3 ms at N = 30, 12 ms at N = 120) runs only
-when power iteration cannot vouch for its answer (the dominant eigenvalue is negative, complex,
-or not separated from the next one).
+products; the full nonsymmetric eigenvalue solve runs only when power iteration cannot vouch for
+its answer (the dominant eigenvalue is negative, complex, or not separated from the next one).
 
 Meaningfully positive: mu must exceed `NEGLIGIBLE` times ||G|| (Frobenius). 1 / ||G|| is the
 dynamic pressure at which the loads become comparable to the wing's stiffness in its most
@@ -32,8 +41,9 @@ import math
 import numpy as np
 
 from solver.evaluation import Evaluation
+from solver.layout import Layout
 
-__all__ = ["NEGLIGIBLE", "divergence_pressure"]
+__all__ = ["NEGLIGIBLE", "beam_response", "divergence_pressure"]
 
 NEGLIGIBLE = 1e-9
 # An eigenvalue counts as real when its imaginary part is this small relative to ||G||.
@@ -43,19 +53,39 @@ _POWER_ITERATIONS = 60
 _POWER_RESIDUAL = 1e-11
 
 
-def divergence_pressure(evaluation: Evaluation, load_rows: np.ndarray) -> float | None:
+def beam_response(evaluation: Evaluation, layout: Layout) -> np.ndarray:
+    """P = A^{-1} E_s (n_structure, m): the clamped beam's deformation per unit load-row
+    residual. A is the same at every state and airspeed: compute it once per wing."""
+    a = evaluation.jacobian0[layout.structure_rows, layout.structure]
+    rows = layout.load_rows - (layout.structure_rows.start or 0)
+    selector = np.zeros((a.shape[0], rows.size))
+    selector[rows, np.arange(rows.size)] = 1.0
+    return np.linalg.solve(a, selector)
+
+
+def divergence_pressure(
+    evaluation: Evaluation, layout: Layout, beam: np.ndarray | None = None
+) -> float | None:
     """Smallest positive real lambda [Pa] with J0 + lambda J1 singular, or None if there is none.
 
-    `load_rows`: (m,) the equations in which J1 is non-zero.
+    `beam`: `beam_response` of this wing (computed here when not given).
     """
-    n = evaluation.r0.size
-    selector = np.zeros((n, load_rows.size))
-    selector[load_rows, np.arange(load_rows.size)] = 1.0
+    j0, j1 = evaluation.jacobian0, evaluation.jacobian1
+    tangency, structure, circulation = (
+        layout.tangency_rows,
+        layout.structure,
+        layout.circulation,
+    )
     try:
-        inverse_columns = np.linalg.solve(evaluation.jacobian0, selector)
+        if beam is None:
+            beam = beam_response(evaluation, layout)
+        # T_g^{-1} T_s: how the circulations answer a deformation.
+        response = np.linalg.solve(j0[tangency, circulation], j0[tangency, structure])
     except np.linalg.LinAlgError:
         return None
-    g = -evaluation.jacobian1[load_rows] @ inverse_columns
+    loads = j1[layout.load_rows]
+    coupling = loads[:, structure] - loads[:, circulation] @ response
+    g = -coupling @ beam
     scale = float(np.linalg.norm(g))
     if not math.isfinite(scale) or scale == 0.0:
         return None
@@ -94,6 +124,9 @@ def _start_vector(m: int) -> np.ndarray:
 
 
 def _largest_positive_real_eigenvalue(g: np.ndarray, scale: float) -> float | None:
-    mu = np.linalg.eigvals(g)
+    try:
+        mu = np.linalg.eigvals(g)
+    except np.linalg.LinAlgError:
+        return None
     real_positive = mu[(np.abs(mu.imag) <= _REAL_TOLERANCE * scale) & (mu.real > 0)].real
     return float(np.max(real_positive)) if real_positive.size else None

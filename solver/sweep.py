@@ -45,7 +45,7 @@ def sweep(
     """
     started = time.perf_counter()
     options = options or SolverOptions()
-    system = CoupledSystem(wing, alpha)
+    system = CoupledSystem.of(wing, alpha, options)
     fastest = max(velocities, default=0.0)
     limit = search_velocity_limit(system, density, fastest)
     try:
@@ -70,7 +70,9 @@ def sweep(
         points.append(SweepPoint(None, velocity, "equilibrium", equilibrium, None))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
     divergence = DivergenceSummary(
-        linear=linear_divergence(wing, density), fit=fit_divergence(stable), fold=found
+        linear=linear_divergence(wing, density, options),
+        fit=fit_divergence(stable),
+        fold=found,
     )
     return SweepResult(points, divergence, SweepInfo(time.perf_counter() - started))
 

@@ -1,4 +1,4 @@
-"""One wing at one angle of attack: the compiled model bound to the wing's parameters.
+"""One wing at one angle of attack, as modelled: the compiled model bound to the wing's parameters.
 
 Everything above this module speaks of a `CoupledSystem`: evaluate r0, r1, J0, J1 at a state,
 the residual alone, the panel loads, and the scaled coordinates its continuation uses.
@@ -14,8 +14,9 @@ import numpy as np
 from solver.cache import model_for
 from solver.compiled import CompiledModel
 from solver.continuation import branch_scales
-from solver.evaluation import Evaluation
-from solver.inputs import Wing
+from solver.evaluation import AlphaTerms, Evaluation
+from solver.geometry import chordwise_nodes
+from solver.inputs import SolverOptions, Wing
 from solver.layout import Layout
 
 __all__ = ["CoupledSystem"]
@@ -23,39 +24,56 @@ __all__ = ["CoupledSystem"]
 
 @dataclass(frozen=True, eq=False)
 class CoupledSystem:
-    """The residual r(x; q) = r0(x) + q r1(x) of `wing` at `alpha` [deg]."""
+    """The residual r(x; q) = r0(x) + q r1(x) of `wing` at `alpha` [deg], with `chordwise`
+    panels per strip and the torque about the heaved elastic axis if `deformed_axis`."""
 
     wing: Wing
     alpha: float
+    chordwise: int = 1
+    deformed_axis: bool = False
+
+    @classmethod
+    def of(cls, wing: Wing, alpha: float, options: SolverOptions) -> CoupledSystem:
+        return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed")
+
+    def at_alpha(self, alpha: float) -> CoupledSystem:
+        return CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
 
     @cached_property
     def layout(self) -> Layout:
-        return Layout(self.wing.n_stations)
+        return Layout(self.wing.n_stations, self.chordwise)
 
-    @property
+    @cached_property
     def model(self) -> CompiledModel:
-        # Looked up on every use: the cache may have swapped in compiled code, or evicted it.
+        # Looked up once per system (a system lives for one request): the model swaps compiled
+        # code in by itself, and `model_for` picks up a library another process compiled.
         return model_for(self.layout)
 
     @cached_property
     def parameters(self) -> np.ndarray:
         """(n_parameters,) the model's parameter vector."""
-        return self.layout.parameters(self.wing.arrays(), self.alpha)
+        camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
+        return self.layout.parameters(
+            self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
+        )
 
     @property
-    def key(self) -> tuple[str, float]:
-        """The canonical identity of the wing at this alpha (-0.0 and 0.0 alike)."""
-        return (self.wing.key, self.alpha + 0.0)
+    def key(self) -> tuple[str, float, int, bool]:
+        """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike)."""
+        return (self.wing.key, self.alpha + 0.0, self.chordwise, self.deformed_axis)
 
     def evaluate(self, x: np.ndarray) -> Evaluation:
         return self.model.evaluate(x, self.parameters)
+
+    def evaluate_with_alpha(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
+        return self.model.evaluate_with_alpha(x, self.parameters)
 
     def residual(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return self.model.residual(x, self.parameters)
 
     def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
-        """[force (3, M) per unit q, torque (1, M) per unit q, vortex_center (3, M),
-        vortex_vertex (3, N)]."""
+        """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord
+        (3, N)]."""
         return self.model.panel_loads(x, self.parameters)
 
     def scale(self, q_scale: float) -> np.ndarray:

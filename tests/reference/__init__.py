@@ -112,14 +112,34 @@ class Reference:
 
     @cached_property
     def wing(self) -> solver.Wing:
+        """The wing as flexwing takes it; an extended case's camber is the line AeroSandbox put
+        at the chordwise nodes (its airfoil's coordinates, not the analytic mean line)."""
         case = self.case
+        model = self.data.get("model", {})
         return solver.Wing.create(
             y=np.asarray(self.data["ys"]),
             chord=case["chords"],
             elastic_axis=case["x_ea_over_chord"],
             bending_stiffness=case["EI"],
             torsional_stiffness=case["GJ"],
+            sweep=model.get("sweep_deg", 0.0),
+            jig_twist=model.get("jig_twist_deg", 0.0),
+            airfoil=self.data.get("camber_line"),
         )
+
+    @property
+    def options(self) -> solver.SolverOptions:
+        model = self.data.get("model", {})
+        return solver.SolverOptions(
+            chordwise_panels=model.get("chordwise_resolution", 1),
+            torque_axis=model.get("torque_axis", "undeformed"),
+        )
+
+    @property
+    def trimmed_lift(self) -> float | None:
+        """[N] the lift a trimmed case holds, or None at a given alpha."""
+        trim = self.case.get("trim")
+        return None if trim is None else float(trim["lift"])
 
 
 def load_reference(path: Path) -> Reference:

@@ -70,7 +70,7 @@ def test_newton_from_the_branch_converges_just_below_the_fold(case, gap):
     q = 0.5 * RHO * (fold.velocity * (1 - gap)) ** 2
     result = _plain_newton(system, traced.start_for(q), q)
     assert result is not None
-    local = divergence_pressure(result[1], system.layout.load_rows)
+    local = divergence_pressure(result[1], system.layout)
     assert local is not None and local > q  # stable: still on the branch, before the fold
 
 
@@ -82,7 +82,7 @@ def test_newton_from_the_branch_finds_no_stable_equilibrium_just_above_the_fold(
     for start in (traced.start_for(q), traced.start_for(0.99 * fold.dynamic_pressure)):
         result = _plain_newton(system, start, q)
         if result is not None:
-            local = divergence_pressure(result[1], system.layout.load_rows)
+            local = divergence_pressure(result[1], system.layout)
             assert local is not None and local < q  # landed on an unstable equilibrium
 
 

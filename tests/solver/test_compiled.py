@@ -33,11 +33,12 @@ def private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[P
 def _parameters(n: int) -> np.ndarray:
     y = np.linspace(0.0, 3.0, n)
     chord = np.linspace(1.0, 0.5, n)
-    return np.concatenate([y, chord, np.full(n, 0.35), 5e3 * chord**3, 4e2 * chord**3, [4.0]])
+    arrays = (y, chord, np.full(n, 0.35), 5e3 * chord**3, 4e2 * chord**3, np.zeros(n))
+    return Layout(n).parameters(arrays, np.zeros((n, 2)), 4.0, 10.0, False)
 
 
 def _random_state(n: int) -> np.ndarray:
-    return np.random.default_rng(7).normal(scale=0.02, size=4 * n - 1)
+    return np.random.default_rng(7).normal(scale=0.02, size=Layout(n).n_unknowns)
 
 
 def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cache: Path) -> None:
@@ -52,7 +53,7 @@ def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cach
     assert len(libraries) == 1
     # Keyed by mesh size, model version and CasADi version.
     name = libraries[0].name
-    assert f"n{N_SMALL}-" in name
+    assert f"n{N_SMALL}-k1-" in name
     assert f"model{compiled.MODEL_VERSION}-" in name
     assert "casadi" in name
     assert "ffp_contract=off" in name

@@ -16,7 +16,10 @@ from tests.study import DENSITY, study_wing
 def _tracer(system: CoupledSystem) -> BranchTracer:
     start = jig(system)
     return BranchTracer(
-        system.evaluate, np.array(start.state), system.scale(pressure_scale(system))
+        system.evaluate,
+        system.residual,
+        np.array(start.state),
+        system.scale(pressure_scale(system)),
     )
 
 

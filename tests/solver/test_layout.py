@@ -8,17 +8,17 @@ import pytest
 from solver import Layout
 
 
-@pytest.mark.parametrize("n", [3, 30, 150])
-def test_unknowns_and_equations_tile_the_system(n: int):
-    layout = Layout(n)
-    assert layout.n_unknowns == 4 * n - 1
+@pytest.mark.parametrize(("n", "k"), [(3, 1), (30, 1), (150, 1), (30, 4)])
+def test_unknowns_and_equations_tile_the_system(n: int, k: int):
+    layout = Layout(n, k)
+    assert layout.n_unknowns == 3 * n + (n - 1) * k
     unknowns = np.zeros(layout.n_unknowns, dtype=int)
     for part in (layout.heave, layout.slope, layout.twist, layout.circulation):
         unknowns[part] += 1
     assert np.all(unknowns == 1)
     equations = np.zeros(layout.n_unknowns, dtype=int)
     equations[:3] += 1  # root clamps
-    equations[3 : 3 + layout.n_panels] += 1  # heave kinematics
+    equations[3 : 3 + layout.n_strips] += 1  # heave kinematics
     for rows in (layout.bending_rows, layout.torsion_rows, layout.tangency_rows):
         equations[rows] += 1
     assert np.all(equations == 1)
@@ -31,10 +31,14 @@ def test_the_load_rows_are_the_bending_and_torsion_rows():
     np.testing.assert_array_equal(layout.load_rows, expected)
 
 
-def test_the_parameter_vector_ends_with_alpha():
-    layout = Layout(3)
-    arrays = tuple(np.full(3, float(k)) for k in range(5))
-    p = layout.parameters(arrays, 7.5)
+def test_the_parameter_vector_splits_back_into_its_parts():
+    layout = Layout(3, 2)
+    arrays = tuple(np.full(3, float(k)) for k in range(6))
+    camber = np.arange(9.0).reshape(3, 3)
+    p = layout.parameters(arrays, camber, 7.5, 20.0, True)
     assert p.shape == (layout.n_parameters,)
-    assert p[-1] == 7.5
-    np.testing.assert_array_equal(p[3:6], [1.0, 1.0, 1.0])
+    *parts, camber_part, alpha, sweep, deformed = layout.split(p)
+    for k, part in enumerate(parts):
+        np.testing.assert_array_equal(part, np.full(3, float(k)))
+    np.testing.assert_array_equal(camber_part, camber.ravel())  # station-major
+    assert (alpha, sweep, deformed) == (7.5, 20.0, 1.0)

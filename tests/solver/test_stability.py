@@ -34,11 +34,13 @@ CASES = [
 
 
 @pytest.mark.parametrize(("make_wing", "alpha", "velocity"), CASES)
-def test_power_iteration_agrees_with_the_full_eigenvalue_solve(make_wing, alpha, velocity):
+def test_the_block_formula_and_power_iteration_agree_with_the_full_eigenvalue_solve(
+    make_wing, alpha, velocity
+):
     equilibrium = solver.solve(make_wing(), flight(velocity, alpha))
-    rows = CoupledSystem(make_wing(), alpha).layout.load_rows
-    fast = stability.divergence_pressure(equilibrium.evaluation, rows)
-    full = _full(equilibrium.evaluation, rows)
+    layout = CoupledSystem(make_wing(), alpha).layout
+    fast = stability.divergence_pressure(equilibrium.evaluation, layout)
+    full = _full(equilibrium.evaluation, layout.load_rows)
     assert fast is not None and full is not None
     assert fast == pytest.approx(full, rel=1e-9)
 
