@@ -7,19 +7,21 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Awaitable, Callable
+from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
 from contextlib import asynccontextmanager
 from typing import Any
 
-from fastapi import FastAPI
+from fastapi import Depends, FastAPI
 from fastapi.openapi.utils import get_openapi
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__
+from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.pool import WorkerPool
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
 from app.routes import health, page, solve, sweep
+from app.routes import jobs as job_routes
 from app.service import Service
 from app.settings import Settings, get_settings
 
@@ -36,18 +38,21 @@ each problem is a URI under `/problems/`. The examples are the design study's wi
 
 
 class BodyLimitMiddleware:
-    """413 for a request body over `limit` bytes, declared or streamed (pure ASGI)."""
+    """413 for a request body over `limit` bytes, declared or streamed (pure ASGI); paths in
+    `path_limits` have limits of their own (POST /jobs: a batch of 10,000 solves)."""
 
-    def __init__(self, app: ASGIApp, limit: int) -> None:
+    def __init__(
+        self, app: ASGIApp, limit: int, path_limits: Mapping[str, tuple[int, str]] | None = None
+    ) -> None:
         self.app = app
         self.limit = limit
+        self.path_limits = dict(path_limits or {})
 
-    def _too_large(self, size: str) -> Problem:
+    def _too_large(self, size: str, limit: int, setting: str) -> Problem:
         return Problem(
             "body-too-large",
-            f"the request body has {size} bytes; at most {self.limit} are accepted "
-            "(FLEXWING_MAX_BODY_BYTES)",
-            extensions={"max_body_bytes": self.limit},
+            f"the request body has {size} bytes; at most {limit} are accepted ({setting})",
+            extensions={"max_body_bytes": limit},
         )
 
     async def __call__(
@@ -59,12 +64,14 @@ class BodyLimitMiddleware:
         if scope["type"] != "http" or scope["method"] not in ("POST", "PUT", "PATCH"):
             await self.app(scope, receive, send)
             return
+        limit, setting = self.path_limits.get(
+            scope["path"], (self.limit, "FLEXWING_MAX_BODY_BYTES")
+        )
         headers = dict(scope.get("headers") or [])
         declared = headers.get(b"content-length")
-        if declared is not None and declared.isdigit() and int(declared) > self.limit:
-            await problem_response(self._too_large(declared.decode()), scope["path"])(
-                scope, receive, send
-            )
+        if declared is not None and declared.isdigit() and int(declared) > limit:
+            too_large = self._too_large(declared.decode(), limit, setting)
+            await problem_response(too_large, scope["path"])(scope, receive, send)
             return
         chunks: list[bytes] = []
         size = 0
@@ -74,10 +81,9 @@ class BodyLimitMiddleware:
                 break  # disconnected
             chunks.append(message.get("body", b""))
             size += len(chunks[-1])
-            if size > self.limit:
-                await problem_response(self._too_large(f"more than {self.limit}"), scope["path"])(
-                    scope, receive, send
-                )
+            if size > limit:
+                too_large = self._too_large(f"more than {limit}", limit, setting)
+                await problem_response(too_large, scope["path"])(scope, receive, send)
                 return
             if not message.get("more_body", False):
                 break
@@ -145,13 +151,16 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     metrics = Metrics()
     pool = WorkerPool(settings, metrics)
     service = Service(settings, pool, metrics)
+    jobs = JobManager(settings, service, metrics)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         await pool.start()
+        await jobs.start()
         try:
             yield
         finally:
+            await jobs.close()
             await pool.close()
 
     app = FastAPI(
@@ -167,10 +176,18 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.pool = pool
     app.state.service = service
     install_handlers(app)
-    for module in (solve, sweep, health, page):
+    app.include_router(solve.router)
+    # Prefer: respond-async turns a /sweep call into a job (202 + Location).
+    async_sweep = Depends(job_routes.respond_async("sweep"))
+    app.include_router(sweep.router, dependencies=[async_sweep], responses=job_routes.ACCEPTED)
+    for module in (health, page):
         app.include_router(module.router)
+    job_routes.install(app, jobs)
     app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")
-    app.add_middleware(BodyLimitMiddleware, limit=settings.max_body_bytes)
+    job_body = (settings.max_job_body_bytes, "FLEXWING_MAX_JOB_BODY_BYTES")
+    app.add_middleware(
+        BodyLimitMiddleware, limit=settings.max_body_bytes, path_limits={"/jobs": job_body}
+    )
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app

@@ -88,6 +88,25 @@ class Metrics:
             "flexwing_running_jobs", "Jobs running in local workers now.", registry=r
         )
         self.ready = Gauge("flexwing_ready", "1 when the worker pool is warm.", registry=r)
+        # Jobs (POST /jobs, issue 13).
+        self.jobs = Gauge(
+            "flexwing_jobs",
+            "Jobs in the jobs database (not expired), by state.",
+            ["state"],
+            registry=r,
+        )
+        self.job_queue = Gauge(
+            "flexwing_job_queue_length", "Jobs waiting for a runner to start them.", registry=r
+        )
+        self.jobs_submitted = Counter(
+            "flexwing_jobs_submitted", "Jobs accepted, by operation.", ["operation"], registry=r
+        )
+        self.batch_items = Counter(
+            "flexwing_batch_items",
+            "Batch items answered, by outcome (ok, problem); its rate is items per second.",
+            ["outcome"],
+            registry=r,
+        )
 
 
 Scope = MutableMapping[str, Any]

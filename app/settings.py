@@ -9,17 +9,29 @@ from __future__ import annotations
 
 import os
 from functools import lru_cache
+from pathlib import Path
 from typing import Literal
 
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["MAX_ARRAY_LENGTH", "Settings", "get_settings"]
+__all__ = ["MAX_ARRAY_LENGTH", "MAX_BATCH_ITEMS", "Settings", "default_jobs_db", "get_settings"]
 
 # Hard ceiling on every array in a request, whatever the settings: validation stops at one
 # `too_long` error instead of judging (and listing) every item of a huge array. The configured
 # limits (max_stations, max_sweep_points) apply below it.
 MAX_ARRAY_LENGTH = 1000
+
+
+# Hard ceiling on the items of one batch job, whatever the settings (FLEXWING_MAX_BATCH_ITEMS
+# applies below it).
+MAX_BATCH_ITEMS = 10_000
+
+
+def default_jobs_db() -> Path:
+    """The jobs database under the user's cache directory (XDG_CACHE_HOME, else ~/.cache)."""
+    cache = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(cache) / "flexwing" / "jobs.sqlite3"
 
 
 def _cpu_count() -> int:
@@ -102,6 +114,66 @@ class Settings(BaseSettings):
     )
     retry_after: int = Field(
         default=1, ge=0, description="[s] Retry-After sent with 503 responses."
+    )
+
+    # ------------------------------------------------------------------------ jobs (issue 13)
+    jobs_db: Path = Field(
+        default_factory=default_jobs_db,
+        description=(
+            "SQLite file of the jobs (POST /jobs): finished jobs survive a restart. Default: "
+            "~/.cache/flexwing/jobs.sqlite3 (under XDG_CACHE_HOME when set)."
+        ),
+    )
+    job_retention: float = Field(
+        default=86_400.0,
+        gt=0,
+        description="[s] how long a finished (succeeded, failed, cancelled) job is kept.",
+    )
+    max_queued_jobs: int = Field(
+        default=100,
+        ge=1,
+        description="Jobs waiting to start; beyond it POST /jobs gets 503 with Retry-After.",
+    )
+    job_runners: int = Field(
+        default=2,
+        ge=1,
+        le=64,
+        description=(
+            "Jobs running at once; each fans its work out over every worker (a batch keeps "
+            "workers x jobs_per_worker items in flight)."
+        ),
+    )
+    max_batch_items: int = Field(
+        default=MAX_BATCH_ITEMS,
+        ge=1,
+        le=MAX_BATCH_ITEMS,
+        description=f"Most /solve requests in one batch job (at most {MAX_BATCH_ITEMS}).",
+    )
+    max_job_body_bytes: int = Field(
+        default=50_000_000,
+        ge=1024,
+        description=(
+            "[bytes] largest POST /jobs body (a batch of 10,000 solves of 30 stations is about "
+            "25 MB); other requests keep FLEXWING_MAX_BODY_BYTES."
+        ),
+    )
+    # ----------------------------------------------------------------- Dask (issue 13)
+    dask_scheduler: str | None = Field(
+        default=None,
+        description=(
+            "Address of the dask.distributed scheduler (e.g. tcp://10.0.0.5:8786) used when "
+            "FLEXWING_EXECUTOR=dask."
+        ),
+    )
+    dask_tasks_per_thread: int = Field(
+        default=8,
+        ge=1,
+        le=64,
+        description=(
+            "Dask tasks in flight per worker thread of the cluster: hides Dask's ~20 ms round "
+            "trip per task (its batched messages). A solve's time budget counts from submission "
+            "on Dask, so it includes waiting behind at most this many tasks."
+        ),
     )
 
 

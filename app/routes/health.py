@@ -37,6 +37,7 @@ async def readyz(request: Request) -> Any:
         pids=pool.pids(),
         warm_stations=list(pool.warm_stations),
         detail=pool.detail,
+        cluster=pool.cluster(),
     )
     return JSONResponse(body.model_dump(), status_code=200 if pool.ready else 503)
 

@@ -1,0 +1,10 @@
+"""Jobs (issue 13): long work accepted at once and run in the background (POST /jobs).
+
+`operations`: the registry of what a job can run (solve, sweep, batch); `models`: the API's
+models; `store`: the SQLite database; `manager`: queueing, running, cancelling, streaming.
+"""
+
+from app.jobs.manager import JobManager
+from app.jobs.operations import OPERATIONS, Operation, register
+
+__all__ = ["OPERATIONS", "JobManager", "Operation", "register"]

@@ -1,0 +1,509 @@
+"""Jobs: accepted at once, run in the background, kept in the jobs database.
+
+A submitted job is checked (the same 422 problems as the synchronous endpoint), stored as
+`queued` and put on an in-memory queue that `job_runners` runner tasks take from. Running, it is
+an asyncio task calling the operation (`app.jobs.operations`) through the same `Service` as the
+endpoints, so a job's answers are the endpoint's answers. Queued and running jobs live in memory
+(`LiveJob`) and in the database (progress written at most every `_PROGRESS_INTERVAL` s, each batch
+item as it is answered); finished ones only in the database, until their retention ends.
+
+Cancelling (DELETE) a queued job finishes it at once; a running one has its task cancelled: no new
+work starts, work already in a worker runs to its end unrecorded. Stopping the service fails
+every queued and running job with /problems/job-interrupted; so does the next start for the jobs
+of an instance that died without stopping (see `app.jobs.store`).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import logging
+import secrets
+import signal
+import threading
+import time
+from collections.abc import AsyncIterator, Callable, Mapping
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from typing import Any
+
+from app.jobs import store
+from app.jobs.models import FINISHED_STATES, JOB_STATES
+from app.jobs.operations import OPERATIONS, Operation, problem_body
+from app.jobs.store import JobRow, JobStore, OwnerLock
+from app.metrics import Metrics
+from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType
+from app.service import Service
+from app.settings import Settings
+
+__all__ = ["JobManager", "LiveJob", "job_view"]
+
+log = logging.getLogger(__name__)
+
+_PROGRESS_INTERVAL = 0.5  # [s] progress of a running job is written this often at most
+_EVENT_INTERVAL = 0.2  # [s] an event stream sends progress this often at most
+_KEEPALIVE = 15.0  # [s] an idle event stream sends a comment this often
+_STREAM_CHUNK = 500  # items read from the database at once when streaming
+
+PROBLEM_TYPES["job-interrupted"] = ProblemType(
+    "job-interrupted",
+    "Job interrupted",
+    503,
+    "The service stopped while this job was queued or running (`done` of `total` units were "
+    "finished; a batch's answered items stay in items.ndjson). Submit it again.",
+)
+PROBLEM_TYPES["job-conflict"] = ProblemType(
+    "job-conflict",
+    "Job runs elsewhere",
+    409,
+    "The job runs in another service process that shares the jobs database; cancel it there.",
+)
+
+
+def _iso(seconds: float | None) -> str | None:
+    """[s since the epoch] -> RFC 3339 in UTC."""
+    if seconds is None:
+        return None
+    return datetime.fromtimestamp(seconds, tz=UTC).isoformat().replace("+00:00", "Z")
+
+
+def job_view(row: Mapping[str, Any], operations: Mapping[str, Operation]) -> dict[str, Any]:
+    """A job (a database row or `LiveJob.row()`) as the API shows it, without its result."""
+    job_id = row["id"]
+    problem = row.get("problem")
+    operation = operations.get(row["operation"])
+    items = operation is not None and operation.has_items
+    return {
+        "id": job_id,
+        "operation": row["operation"],
+        "status": row["status"],
+        "progress": {"done": row["done"], "total": row["total"], "problems": row["problems"]},
+        "created_at": _iso(row["created"]),
+        "started_at": _iso(row["started"]),
+        "finished_at": _iso(row["finished"]),
+        "expires_at": _iso(row["expires"]),
+        "problem": json.loads(problem) if isinstance(problem, str) else problem,
+        "links": {
+            "self": f"/jobs/{job_id}",
+            "events": f"/jobs/{job_id}/events",
+            "items": f"/jobs/{job_id}/items.ndjson" if items else None,
+        },
+    }
+
+
+def _prefixed(problem: Problem, prefix: str) -> Problem:
+    """An invalid-input problem about a request, its field paths from `prefix` (the body)."""
+    if problem.type.slug != "invalid-input":
+        return problem
+    listed = problem.extensions.get("errors", [])
+    errors = [FieldError(f"{prefix}.{e['field']}", e["reason"]) for e in listed]
+    renamed = Problem.invalid(errors)
+    renamed.extensions["error_count"] = problem.extensions.get("error_count", len(errors))
+    return renamed
+
+
+@dataclass(eq=False)
+class LiveJob:
+    """A queued or running job, in memory (`row()` is its database row)."""
+
+    id: str
+    operation: Operation
+    request: Any  # the validated request model; None once finished
+    created: float  # [s since the epoch]
+    total: int
+    status: str = "queued"
+    started: float | None = None
+    finished: float | None = None
+    expires: float | None = None
+    done: int = 0
+    problems: int = 0
+    result: str | None = None  # JSON text
+    problem: dict[str, Any] | None = None
+    task: asyncio.Task[None] | None = None
+    cancel_requested: bool = False
+    answers: int = 0  # batch items answered: their order in the database
+    progress_written: float = 0.0  # [s, monotonic]
+    changed: asyncio.Event = field(default_factory=asyncio.Event)
+
+    def row(self) -> JobRow:
+        return {
+            "id": self.id,
+            "operation": self.operation.name,
+            "status": self.status,
+            "created": self.created,
+            "started": self.started,
+            "finished": self.finished,
+            "expires": self.expires,
+            "done": self.done,
+            "total": self.total,
+            "problems": self.problems,
+            "problem": self.problem,
+        }
+
+    def notify(self) -> None:
+        """Wake whoever waits for a change (event streams)."""
+        self.changed.set()
+        self.changed = asyncio.Event()
+
+
+@dataclass
+class _Context:
+    """An operation's `operations.JobContext`: the service, how many items to keep in flight,
+    and a place to record batch items."""
+
+    manager: JobManager
+    job: LiveJob
+
+    @property
+    def service(self) -> Service:
+        return self.manager.service
+
+    @property
+    def lanes(self) -> int:
+        return self.manager.service.pool.capacity
+
+    def item_answered(self, index: int, ok: bool, line: str) -> None:
+        self.manager.item_answered(self.job, index, ok, line)
+
+
+class JobManager:
+    def __init__(
+        self,
+        settings: Settings,
+        service: Service,
+        metrics: Metrics,
+        operations: Mapping[str, Operation] = OPERATIONS,
+    ) -> None:
+        self.settings = settings
+        self.service = service
+        self.metrics = metrics
+        self.operations = operations
+        self.owner = secrets.token_hex(8)
+        self.store = JobStore(settings.jobs_db)
+        self._lock = OwnerLock(settings.jobs_db, self.owner)
+        self._live: dict[str, LiveJob] = {}
+        self._queue: asyncio.Queue[LiveJob] = asyncio.Queue()
+        self._counts: dict[str, int] = dict.fromkeys(JOB_STATES, 0)
+        self._tasks: list[asyncio.Task[None]] = []
+        self._stopping = asyncio.Event()
+        self._restore_signals: Callable[[], None] = lambda: None
+        self._started = False
+        metrics.job_queue.set_function(self.queued)
+
+    # ------------------------------------------------------------------------- lifecycle
+
+    async def start(self) -> None:
+        self._stopping = asyncio.Event()
+        self._lock.acquire()
+        await self.store.open()
+        self._started = True
+        await self._interrupt_orphans()
+        await self._recount()
+        self._tasks = [
+            asyncio.create_task(self._runner(), name=f"flexwing-job-runner-{n}")
+            for n in range(self.settings.job_runners)
+        ]
+        self._tasks.append(asyncio.create_task(self._janitor(), name="flexwing-job-janitor"))
+        self._restore_signals = _on_shutdown_signals(asyncio.get_running_loop(), self._stopping.set)
+
+    async def close(self) -> None:
+        """Fail the jobs still queued or running (interrupted), then close the database."""
+        self._stopping.set()
+        self._restore_signals()
+        for task in self._tasks:
+            task.cancel()
+        running = [job.task for job in self._live.values() if job.task is not None]
+        for job in list(self._live.values()):
+            if job.task is not None:
+                job.task.cancel()
+            if job.status == "queued":
+                self._finish(job, "failed", problem=self._interrupted(job))
+        await asyncio.gather(*self._tasks, *running, return_exceptions=True)
+        if self._started:
+            await self.store.close()
+        self._lock.release()
+
+    def queued(self) -> int:
+        return sum(1 for job in self._live.values() if job.status == "queued")
+
+    # ------------------------------------------------------------------------ submission
+
+    def submit(self, name: str, request: Any, *, prefix: str | None = "request") -> LiveJob:
+        """Check and queue a job; raises the endpoint's 422 problem (paths from `prefix`) or
+        503 overloaded when `max_queued_jobs` are waiting."""
+        operation = self.operations[name]
+        try:
+            operation.check(request, self.settings)
+        except Problem as problem:
+            raise _prefixed(problem, prefix) if prefix else problem from None
+        if self._stopping.is_set() or self.queued() >= self.settings.max_queued_jobs:
+            self.metrics.shed.inc()
+            raise Problem(
+                "overloaded",
+                f"{self.queued()} jobs are waiting to start (FLEXWING_MAX_QUEUED_JOBS)",
+                headers={"Retry-After": str(self.settings.retry_after)},
+            )
+        job = LiveJob(
+            secrets.token_urlsafe(16), operation, request, time.time(), operation.units(request)
+        )
+        self._live[job.id] = job
+        self.store.write(store.insert_job, job.row() | {"owner": self.owner, "problem": None})
+        self._count(None, "queued")
+        self.metrics.jobs_submitted.labels(name).inc()
+        self._queue.put_nowait(job)
+        return job
+
+    # --------------------------------------------------------------------------- running
+
+    async def _runner(self) -> None:
+        while True:
+            job = await self._queue.get()
+            if job.status != "queued":
+                continue  # cancelled while it waited
+            job.task = asyncio.create_task(self._execute(job), name=f"flexwing-job-{job.id}")
+            await asyncio.wait([job.task])
+
+    async def _execute(self, job: LiveJob) -> None:
+        if job.status != "queued":
+            return  # cancelled between being taken from the queue and starting
+        job.status, job.started = "running", time.time()
+        self.store.write(store.update_job, job.id, {"status": "running", "started": job.started})
+        self._count("queued", "running")
+        job.notify()
+        try:
+            result = await job.operation.run(_Context(self, job), job.request)
+        except asyncio.CancelledError:
+            if job.cancel_requested:
+                self._finish(job, "cancelled")
+            else:
+                self._finish(job, "failed", problem=self._interrupted(job))
+        except Problem as problem:
+            self._finish(job, "failed", problem=problem_body(problem))
+        except Exception as error:
+            log.exception("job %s (%s) failed", job.id, job.operation.name)
+            internal = Problem("internal-error", f"unexpected {type(error).__name__}")
+            self._finish(job, "failed", problem=problem_body(internal))
+        else:
+            self._finish(job, "succeeded", result=result)
+
+    def item_answered(self, job: LiveJob, index: int, ok: bool, line: str) -> None:
+        job.done += 1
+        job.problems += not ok
+        job.answers += 1
+        self.store.write(store.insert_item, job.id, index, job.answers, ok, line)
+        self.metrics.batch_items.labels("ok" if ok else "problem").inc()
+        now = time.monotonic()
+        if now - job.progress_written >= _PROGRESS_INTERVAL:
+            job.progress_written = now
+            progress = {"done": job.done, "problems": job.problems}
+            self.store.write(store.update_job, job.id, progress)
+        job.notify()
+
+    def _finish(
+        self,
+        job: LiveJob,
+        status: str,
+        *,
+        result: str | None = None,
+        problem: dict[str, Any] | None = None,
+    ) -> None:
+        """Record the final state (the database write is queued before anyone can read)."""
+        interrupted = problem is not None and problem["type"] == "/problems/job-interrupted"
+        if not job.operation.has_items and status in ("succeeded", "failed") and not interrupted:
+            job.done = job.total  # its one unit was answered, with a result or a problem
+        previous = job.status
+        job.status, job.finished = status, time.time()
+        job.expires = job.finished + self.settings.job_retention
+        job.result, job.problem, job.request = result, problem, None
+        fields = job.row() | {"result": result, "problem": json.dumps(problem) if problem else None}
+        self.store.write(store.update_job, job.id, fields)
+        self._count(previous, status)
+        del self._live[job.id]
+        job.notify()
+
+    def _interrupted(self, job: LiveJob) -> dict[str, Any]:
+        return store.interrupted_problem(job.status, job.done, job.total)
+
+    # ------------------------------------------------------------------- reading and cancel
+
+    async def find(self, job_id: str, *, with_result: bool = False) -> JobRow | None:
+        """A job's row (a live one from memory), None if unknown or expired."""
+        live = self._live.get(job_id)
+        if live is not None:
+            return live.row() | {"result": None}
+        row = await self.store.read(store.get_job, job_id, with_result)
+        if row is None or (row["expires"] is not None and row["expires"] <= time.time()):
+            return None
+        return row
+
+    async def page(
+        self, limit: int, before: tuple[float, str] | None, status: str | None
+    ) -> list[JobRow]:
+        rows = await self.store.read(store.list_jobs, limit, before, status, time.time())
+        return [self._live[r["id"]].row() if r["id"] in self._live else r for r in rows]
+
+    async def cancel(self, job_id: str) -> JobRow | None:
+        """Cancel a queued or running job; a finished one stays as it is."""
+        job = self._live.get(job_id)
+        if job is None:
+            return await self._cancel_elsewhere(job_id)
+        job.cancel_requested = True
+        if job.status == "queued":  # (its task, if any, has not begun: it never will)
+            self._finish(job, "cancelled")
+            if job.task is not None:
+                job.task.cancel()
+        elif job.task is not None:
+            job.task.cancel()
+            await asyncio.wait([job.task])
+        return job.row()
+
+    async def _cancel_elsewhere(self, job_id: str) -> JobRow | None:
+        row = await self.find(job_id)
+        if row is None or row["status"] in FINISHED_STATES:
+            return row
+        owner = await self.store.read(_owner_of, job_id)
+        if owner is not None and self._lock.is_alive(owner):
+            raise Problem("job-conflict", f"job {job_id} runs in another service process")
+        await self._interrupt_orphans()
+        return await self.find(job_id)
+
+    # -------------------------------------------------------------------------- streaming
+
+    def live(self, job_id: str) -> LiveJob | None:
+        return self._live.get(job_id)
+
+    async def wait_for_change(self, job: LiveJob, timeout: float) -> bool:
+        """Until `job` changes (True), the service stops or `timeout` [s] passes (False)."""
+        waits = [
+            asyncio.create_task(job.changed.wait()),
+            asyncio.create_task(self._stopping.wait()),
+        ]
+        done, pending = await asyncio.wait(
+            waits, timeout=timeout, return_when=asyncio.FIRST_COMPLETED
+        )
+        for task in pending:
+            task.cancel()
+        return bool(done) and not self._stopping.is_set()
+
+    @property
+    def stopping(self) -> bool:
+        return self._stopping.is_set()
+
+    async def item_lines(self, job_id: str) -> AsyncIterator[str]:
+        """A batch's NDJSON lines in the order they are answered, until the job ends."""
+        after = 0
+        while True:
+            live = self._live.get(job_id)  # before reading: a finished job's items are all in
+            rows = await self.store.read(store.item_lines_by_answer, job_id, after, _STREAM_CHUNK)
+            for seq, line in rows:
+                yield line + "\n"
+                after = seq
+            if rows:
+                continue
+            if live is None:
+                return
+            if not await self.wait_for_change(live, _KEEPALIVE) and self.stopping:
+                return
+
+    async def result_items(self, job_id: str) -> AsyncIterator[str]:
+        """A finished batch's item lines in request order."""
+        after = -1
+        while rows := await self.store.read(
+            store.item_lines_by_index, job_id, after, _STREAM_CHUNK
+        ):
+            for index, line in rows:
+                yield line
+                after = index
+
+    async def events(self, job_id: str, first: JobRow) -> AsyncIterator[str]:
+        """Server-sent events: `progress` while the job is queued or running, then `end` with
+        its final state (no result: GET /jobs/{id} has it)."""
+        yield f"retry: {int(_KEEPALIVE * 1000)}\n\n"
+        live, last, number = self._live.get(job_id), None, 0
+        while True:
+            row = live.row() if live is not None else first
+            view = job_view(row, self.operations)
+            final = view["status"] in FINISHED_STATES
+            if view != last:
+                number += 1
+                kind = "end" if final else "progress"
+                yield f"id: {number}\nevent: {kind}\ndata: {json.dumps(view)}\n\n"
+                last = view
+            if final or live is None or self.stopping:
+                return
+            if not await self.wait_for_change(live, _KEEPALIVE) and not self.stopping:
+                yield ": keep-alive\n\n"
+            await asyncio.sleep(_EVENT_INTERVAL)
+
+    # -------------------------------------------------------------- housekeeping, metrics
+
+    async def _janitor(self) -> None:
+        """Delete expired jobs, fail those of dead instances, refresh the job counts."""
+        interval = max(0.2, min(5.0, self.settings.job_retention / 2))
+        while True:
+            await asyncio.sleep(interval)
+            try:
+                await self.store.read(store.delete_expired, time.time())
+                await self._interrupt_orphans()
+                await self._recount()
+            except Exception:
+                log.exception("jobs housekeeping failed")
+
+    async def _interrupt_orphans(self) -> None:
+        owners = await self.store.read(store.unfinished_owners)
+        for owner in owners:
+            if owner != self.owner and not self._lock.is_alive(owner):
+                count = await self.store.read(
+                    store.interrupt_jobs_of, owner, time.time(), self.settings.job_retention
+                )
+                log.warning("%d job(s) of a stopped service instance marked interrupted", count)
+
+    async def _recount(self) -> None:
+        counts = await self.store.read(store.count_by_status, time.time())
+        self._counts = {state: counts.get(state, 0) for state in JOB_STATES}
+        for state, count in self._counts.items():
+            self.metrics.jobs.labels(state).set(count)
+
+    def _count(self, previous: str | None, status: str) -> None:
+        for state, change in ((previous, -1), (status, 1)):
+            if state is not None:
+                self._counts[state] = self._counts.get(state, 0) + change
+                self.metrics.jobs.labels(state).set(self._counts[state])
+
+
+def _owner_of(connection: Any, job_id: str) -> str | None:
+    found = connection.execute("SELECT owner FROM jobs WHERE id = ?", (job_id,)).fetchone()
+    return None if found is None else str(found[0])
+
+
+def _on_shutdown_signals(
+    loop: asyncio.AbstractEventLoop, callback: Callable[[], None]
+) -> Callable[[], None]:
+    """Also call `callback` (in the loop) on SIGINT and SIGTERM, before the handler already
+    installed (uvicorn's, which starts a graceful shutdown that waits for open responses: event
+    and item streams end on it). Returns what undoes it."""
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    previous: dict[int, Any] = {}
+
+    def handler(signum: int, frame: Any) -> None:
+        with contextlib.suppress(RuntimeError):
+            loop.call_soon_threadsafe(callback)
+        chained = previous.get(signum)
+        if callable(chained):
+            chained(signum, frame)
+        elif chained == signal.SIG_DFL:
+            signal.signal(signum, signal.SIG_DFL)
+            signal.raise_signal(signum)
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        previous[signum] = signal.getsignal(signum)
+        signal.signal(signum, handler)
+
+    def restore() -> None:
+        for signum, chained in previous.items():
+            if signal.getsignal(signum) is handler:
+                signal.signal(signum, chained)
+
+    return restore

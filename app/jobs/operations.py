@@ -1,0 +1,251 @@
+"""What a job can run: a small registry, one `Operation` per name.
+
+Adding one (e.g. ``optimize`` once POST /optimize exists) is a few lines, before
+`app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
+
+    async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
+        payload = await context.service.optimize(request)
+        return OptimizeResponse.model_validate(payload).model_dump_json()
+
+    register(Operation(
+        name="optimize", summary="one optimization (POST /optimize)",
+        request_model=OptimizeRequest, request_description="A POST /optimize body.",
+        units=lambda request: 1, check=lambda request, settings: None, run=_run_optimize,
+    ))
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from collections.abc import Awaitable, Callable, Mapping
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
+
+from pydantic import BaseModel, Discriminator, Field, Tag, create_model
+from pydantic.json_schema import SkipJsonSchema
+
+from app.inputs import solve_input, sweep_input
+from app.jobs.models import BatchRequest, Request
+from app.problems import FieldError, Problem
+from app.schemas import SolveRequest, SolveResponse, SweepRequest, SweepResponse
+from app.service import Service
+from app.settings import Settings
+
+__all__ = ["OPERATIONS", "JobContext", "Operation", "problem_body", "register", "submission_type"]
+
+T = TypeVar("T")
+
+# Problems that mean "not now" for a batch item: it waits and tries again instead of failing.
+_TRANSIENT = frozenset({"overloaded", "not-ready"})
+_MAX_BACKOFF = 1.0  # [s]
+
+
+class JobContext(Protocol):
+    """What an operation's `run` gets from the job manager."""
+
+    @property
+    def service(self) -> Service:
+        """The service the endpoints use (so a job answers what they answer)."""
+        ...
+
+    @property
+    def lanes(self) -> int:
+        """[-] items to keep in flight: enough to keep every worker busy."""
+        ...
+
+    def item_answered(self, index: int, ok: bool, line: str) -> None:
+        """Record batch item `index`'s NDJSON line (ok: a result, else a problem)."""
+        ...
+
+
+@dataclass(frozen=True)
+class Operation:
+    """One kind of job.
+
+    `units`: its progress total for a request; `check`: settings-dependent validation at
+    submission (raises an invalid-input Problem with paths relative to the request); `run`: does
+    the work and returns the result as JSON text (None when it is assembled from batch items).
+    """
+
+    name: str
+    summary: str
+    request_model: type[BaseModel]
+    request_description: str
+    units: Callable[[Any], int]
+    check: Callable[[Any, Settings], None]
+    run: Callable[[JobContext, Any], Awaitable[str | None]]
+    has_items: bool = False
+
+
+OPERATIONS: dict[str, Operation] = {}
+
+
+def register(operation: Operation) -> None:
+    OPERATIONS[operation.name] = operation
+
+
+def problem_body(problem: Problem) -> dict[str, Any]:
+    """A problem as the JSON body `app.problems.problem_response` sends (without `instance`)."""
+    return {
+        "type": problem.type.uri,
+        "title": problem.type.title,
+        "status": problem.status,
+        "detail": problem.detail,
+        **problem.extensions,
+    }
+
+
+# ---------------------------------------------------------------------------- solve, sweep
+
+
+async def patiently(call: Callable[[], Awaitable[T]]) -> T:
+    """`call()`, again after a pause while the pool is full or restarting (a job waits its turn
+    where a synchronous request would get 503)."""
+    backoff = 0.05
+    while True:
+        try:
+            return await call()
+        except Problem as problem:
+            if problem.type.slug not in _TRANSIENT:
+                raise
+        await asyncio.sleep(backoff)
+        backoff = min(2 * backoff, _MAX_BACKOFF)
+
+
+async def _run_solve(context: JobContext, request: SolveRequest) -> str:
+    payload = await patiently(lambda: context.service.solve(request))
+    return SolveResponse.model_validate(payload).model_dump_json()
+
+
+async def _run_sweep(context: JobContext, request: SweepRequest) -> str:
+    payload = await patiently(lambda: context.service.sweep(request))
+    return SweepResponse.model_validate(payload).model_dump_json()
+
+
+def _check_solve(request: SolveRequest, settings: Settings) -> None:
+    solve_input(request, settings)  # raises the endpoint's invalid-input problem
+
+
+def _check_sweep(request: SweepRequest, settings: Settings) -> None:
+    sweep_input(request, settings)
+
+
+def _sweep_points(request: SweepRequest) -> int:
+    velocities = request.velocities
+    return len(velocities) if isinstance(velocities, list) else velocities.count
+
+
+# ----------------------------------------------------------------------------------- batch
+
+
+def _check_batch(request: BatchRequest, settings: Settings) -> None:
+    if len(request.items) > settings.max_batch_items:
+        reason = (
+            f"has {len(request.items)} items; at most {settings.max_batch_items} are allowed "
+            "(FLEXWING_MAX_BATCH_ITEMS)"
+        )
+        raise Problem.invalid([FieldError("items", reason)])
+
+
+async def answer_item(context: JobContext, index: int, request: SolveRequest) -> tuple[bool, str]:
+    """(ok, NDJSON line) of one batch item: its /solve response or its problem."""
+    try:
+        payload = await patiently(lambda: context.service.solve(request))
+    except Problem as problem:
+        body = json.dumps(problem_body(problem), allow_nan=False)
+        return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
+    result = SolveResponse.model_validate(payload).model_dump_json()
+    return True, f'{{"index": {index}, "status": "ok", "result": {result}}}'
+
+
+async def _run_batch(context: JobContext, request: BatchRequest) -> None:
+    """Every item through the service, `context.lanes` at a time (enough to keep every worker
+    busy); each answer is recorded as it comes."""
+    items = request.items
+    indices = iter(range(len(items)))
+
+    async def lane() -> None:
+        for index in indices:  # shared: each lane takes the next unanswered item
+            ok, line = await answer_item(context, index, items[index])
+            context.item_answered(index, ok, line)
+
+    await asyncio.gather(*(lane() for _ in range(min(context.lanes, len(items)))))
+    return None
+
+
+register(
+    Operation(
+        name="solve",
+        summary="one equilibrium (POST /solve)",
+        request_model=SolveRequest,
+        request_description="A POST /solve body.",
+        units=lambda request: 1,
+        check=_check_solve,
+        run=_run_solve,
+    )
+)
+register(
+    Operation(
+        name="sweep",
+        summary="a sweep over airspeeds (POST /sweep)",
+        request_model=SweepRequest,
+        request_description="A POST /sweep body.",
+        units=_sweep_points,
+        check=_check_sweep,
+        run=_run_sweep,
+    )
+)
+register(
+    Operation(
+        name="batch",
+        summary="up to 10,000 independent solves",
+        request_model=BatchRequest,
+        request_description="{items: [a POST /solve body, ...]}.",
+        units=lambda request: len(request.items),
+        check=_check_batch,
+        run=_run_batch,
+        has_items=True,
+    )
+)
+
+
+# ------------------------------------------------------------------ the POST /jobs body
+
+
+def submission_type(operations: Mapping[str, Operation]) -> Any:
+    """The POST /jobs body: one model per operation, told apart by `operation`.
+
+    Validation errors name fields from the body's root (`request.items[3].wing.chord[2]`): the
+    union's tags start with "@", which `app.problems` leaves out of field paths. An operation that
+    is not registered is an error on `operation` (a hidden last member of the union).
+    """
+    names = tuple(operations)
+
+    def tag(value: Any) -> str:
+        name = value.get("operation") if isinstance(value, dict) else None
+        return f"@{name}" if isinstance(name, str) and name in operations else "@unknown"
+
+    members: list[Any] = [
+        Annotated[_submission_model(op), Tag(f"@{name}")] for name, op in operations.items()
+    ]
+    unknown = create_model(
+        "UnknownJobSubmission",
+        __base__=Request,
+        operation=(Literal[names], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
+        request=(Any, None),
+    )
+    members.append(Annotated[unknown, Tag("@unknown"), SkipJsonSchema()])
+    return Annotated[Union[tuple(members)], Discriminator(tag)]  # noqa: UP007
+
+
+def _submission_model(operation: Operation) -> type[BaseModel]:
+    name = operation.name
+    model: type[BaseModel] = create_model(
+        f"{name.capitalize()}JobSubmission",
+        __base__=Request,
+        __doc__=f"Run {operation.summary} as a job.",
+        operation=(Literal[name], Field(description="The operation to run.")),  # type: ignore[valid-type,arg-type]
+        request=(operation.request_model, Field(description=operation.request_description)),
+    )
+    return model

@@ -1,0 +1,363 @@
+"""Jobs: POST /jobs, GET /jobs, GET and DELETE /jobs/{id}, its events and a batch's items.
+
+Also `respond_async`, the dependency that turns a /sweep call with ``Prefer: respond-async``
+(RFC 7240) into a job: 202 with Location, as POST /jobs answers.
+"""
+
+import base64
+import binascii
+import json
+from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
+from typing import Annotated, Any, Literal
+
+from fastapi import APIRouter, Body, FastAPI, Header, Path, Query, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse, Response, StreamingResponse
+from pydantic import TypeAdapter, ValidationError
+
+from app.jobs.manager import JobManager, job_view
+from app.jobs.models import STUDY_BATCH, JobList, JobStatus
+from app.jobs.operations import Operation, submission_type
+from app.problems import FieldError, Problem, ProblemDetails
+from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
+
+__all__ = ["ACCEPTED", "install", "make_router", "respond_async"]
+
+JobId = Annotated[
+    str,
+    Path(
+        min_length=1,
+        max_length=64,
+        pattern=r"^[A-Za-z0-9_-]+$",
+        description="The job id POST /jobs answered (22 URL-safe base64 characters).",
+    ),
+]
+_LOCATION: dict[str, Any] = {
+    "Location": {"description": "/jobs/{id}", "schema": {"type": "string"}}
+}
+ACCEPTED: dict[int | str, dict[str, Any]] = {
+    202: {
+        "model": JobStatus,
+        "description": "Accepted as a job: poll Location (GET /jobs/{id}) or its events.",
+        "headers": _LOCATION,
+    }
+}
+
+
+def _problem(description: str) -> dict[str, Any]:
+    return {"model": ProblemDetails, "description": description}
+
+
+Responses = dict[int | str, dict[str, Any]]
+_NOT_FOUND: Responses = {
+    404: _problem("No such job, or it has expired (/problems/not-found)."),
+    422: _problem("A job id that is not one (/problems/invalid-input, field `path.job_id`)."),
+}
+_LIST_RESPONSES: Responses = {422: _problem("A bad `limit`, `cursor` or `status`.")}
+_CANCEL_RESPONSES: Responses = {
+    **_NOT_FOUND,
+    409: _problem("The job runs in another service process (/problems/job-conflict)."),
+}
+_SUBMIT_RESPONSES: Responses = {
+    202: {"headers": _LOCATION},
+    413: _problem("Body larger than FLEXWING_MAX_JOB_BODY_BYTES (/problems/body-too-large)."),
+    422: _problem(
+        "Invalid body (/problems/invalid-input): `errors` names each bad field from the body's "
+        "root (`request.items[3].wing.chord[2]`; `operation` for an unknown operation)."
+    ),
+    503: _problem("FLEXWING_MAX_QUEUED_JOBS jobs wait already (/problems/overloaded)."),
+}
+
+
+def _manager(request: Request) -> JobManager:
+    manager: JobManager = request.app.state.jobs
+    return manager
+
+
+def _accepted(manager: JobManager, job_row: Mapping[str, Any]) -> JSONResponse:
+    view = job_view(job_row, manager.operations)
+    return JSONResponse(view, status_code=202, headers={"Location": view["links"]["self"]})
+
+
+async def _job_or_404(manager: JobManager, job_id: str, **kwargs: Any) -> dict[str, Any]:
+    row = await manager.find(job_id, **kwargs)
+    if row is None:
+        raise Problem("not-found", f"no job {job_id!r} (never submitted, or expired)")
+    return row
+
+
+# ------------------------------------------------------------------------ pagination cursor
+
+
+def _cursor(row: Mapping[str, Any]) -> str:
+    raw = json.dumps([row["created"], row["id"]]).encode()
+    return base64.urlsafe_b64encode(raw).decode().rstrip("=")
+
+
+def _parse_cursor(cursor: str) -> tuple[float, str]:
+    try:
+        raw = base64.urlsafe_b64decode(cursor + "=" * (-len(cursor) % 4))
+        created, job_id = json.loads(raw)
+        return float(created), str(job_id)
+    except (ValueError, TypeError, binascii.Error):
+        reason = "is not a cursor from a previous page's `next`"
+        raise Problem.invalid([FieldError("query.cursor", reason)]) from None
+
+
+# --------------------------------------------------------------------------- the router
+
+
+def make_router(operations: Mapping[str, Operation]) -> APIRouter:
+    """The jobs routes; POST /jobs takes any operation of `operations`."""
+    submission = submission_type(operations)
+    router = APIRouter(tags=["jobs"])
+    examples = _examples(operations)
+
+    @router.post(
+        "/jobs",
+        operation_id="submit_job",
+        status_code=202,
+        response_model=JobStatus,
+        responses=_SUBMIT_RESPONSES,
+        summary="Run a solve, a sweep or a batch of solves as a job",
+    )
+    async def submit_job(
+        body: Annotated[submission, Body(openapi_examples=examples)],  # type: ignore[valid-type]
+        request: Request,
+    ) -> Any:
+        """Accepted at once: 202 with the job's id and `Location: /jobs/{id}`.
+
+        `request` is what that endpoint takes (a batch: `{items: [a /solve body, ...]}`); a body
+        the endpoint would refuse gets its 422 here. Jobs run in the background,
+        FLEXWING_JOB_RUNNERS at once, each spread over every worker.
+        """
+        manager = _manager(request)
+        job = manager.submit(body.operation, body.request)  # type: ignore[attr-defined]
+        return _accepted(manager, job.row())
+
+    _add_list_route(router)
+    _add_job_routes(router)
+    _add_streaming_routes(router)
+    return router
+
+
+def _examples(operations: Mapping[str, Operation]) -> dict[str, Any]:
+    found = {
+        "batch": ("Three speeds of the study's wing as one batch", STUDY_BATCH),
+        "solve": ("The study's wing at 10 m/s", SOLVE_EXAMPLES["study"]["value"]),
+        "sweep": ("The study's sweep", SWEEP_EXAMPLES["study"]["value"]),
+    }
+    return {
+        name: {"summary": summary, "value": {"operation": name, "request": value}}
+        for name, (summary, value) in found.items()
+        if name in operations
+    }
+
+
+def _add_list_route(router: APIRouter) -> None:
+    @router.get(
+        "/jobs",
+        operation_id="list_jobs",
+        response_model=JobList,
+        responses=_LIST_RESPONSES,
+        summary="Jobs, newest first",
+    )
+    async def list_jobs(
+        request: Request,
+        limit: Annotated[int, Query(ge=1, le=200, description="[-] jobs per page.")] = 50,
+        cursor: Annotated[
+            str | None, Query(max_length=200, description="`next` of the previous page.")
+        ] = None,
+        status: Annotated[
+            Literal["queued", "running", "succeeded", "failed", "cancelled"] | None,
+            Query(description="Only jobs in this state."),
+        ] = None,
+    ) -> Any:
+        """Without results (GET /jobs/{id} has them); `next` is the following page."""
+        manager = _manager(request)
+        before = None if cursor is None else _parse_cursor(cursor)
+        rows = await manager.page(limit + 1, before, status)
+        page = rows[:limit]
+        following = None
+        if len(rows) > limit:
+            query = f"limit={limit}&cursor={_cursor(page[-1])}"
+            following = f"/jobs?{query}" + (f"&status={status}" if status else "")
+        jobs = [job_view(row, manager.operations) for row in page]
+        return JSONResponse({"jobs": jobs, "next": following})
+
+
+def _add_job_routes(router: APIRouter) -> None:
+    @router.get(
+        "/jobs/{job_id}",
+        operation_id="get_job",
+        response_model=JobStatus,
+        responses=_NOT_FOUND,
+        summary="A job's state, progress, and result or problem",
+    )
+    async def get_job(job_id: JobId, request: Request) -> Any:
+        """`result` is what the synchronous endpoint answers (a batch's: every item in order)."""
+        manager = _manager(request)
+        row = await _job_or_404(manager, job_id, with_result=True)
+        return _job_response(manager, row)
+
+    @router.delete(
+        "/jobs/{job_id}",
+        operation_id="cancel_job",
+        response_model=JobStatus,
+        responses=_CANCEL_RESPONSES,
+        summary="Cancel a job",
+    )
+    async def cancel_job(job_id: JobId, request: Request) -> Any:
+        """Work not yet started is not run (`progress` says what was done; a batch's answered
+        items stay in items.ndjson). A finished job is left as it is."""
+        manager = _manager(request)
+        row = await manager.cancel(job_id)
+        if row is None:
+            raise Problem("not-found", f"no job {job_id!r} (never submitted, or expired)")
+        return JSONResponse(job_view(row, manager.operations))
+
+
+def _job_response(manager: JobManager, row: Mapping[str, Any]) -> Response:
+    """The job with its result: stored JSON spliced in, a batch's items streamed from the
+    database (its result may be tens of megabytes)."""
+    view = job_view(row, manager.operations)
+    head = json.dumps(view)[:-1] + ', "result": '
+    operation = manager.operations.get(row["operation"])
+    if row["status"] == "succeeded" and operation is not None and operation.has_items:
+        return StreamingResponse(
+            _batch_body(manager, row["id"], head), media_type="application/json"
+        )
+    result = row.get("result")
+    return Response(head + (result or "null") + "}", media_type="application/json")
+
+
+async def _batch_body(manager: JobManager, job_id: str, head: str) -> AsyncIterator[str]:
+    yield head + '{"items": ['
+    separator = ""
+    async for line in manager.result_items(job_id):
+        yield separator + line
+        separator = ", "
+    yield "]}}"
+
+
+_EVENTS_RESPONSES: Responses = {
+    200: {
+        "description": (
+            "text/event-stream: `progress` events (data: the job, as GET /jobs/{id} without "
+            "result) while it is queued or running, then one `end` event with its final state, "
+            "and the stream closes."
+        ),
+        "content": {"text/event-stream": {"schema": {"type": "string"}}},
+    },
+    **_NOT_FOUND,
+}
+_ITEMS_RESPONSES: Responses = {
+    200: {
+        "description": (
+            "application/x-ndjson: one line per answered item, as they are answered "
+            '(`{"index": 3, "status": "ok", "result": {...}}`, or status problem with `problem`); '
+            "the stream ends when the job does."
+        ),
+        "content": {"application/x-ndjson": {"schema": {"type": "string"}}},
+    },
+    **_NOT_FOUND,
+    404: _problem("No such batch job, or it has expired (/problems/not-found)."),
+}
+
+
+def _add_streaming_routes(router: APIRouter) -> None:
+    @router.get(
+        "/jobs/{job_id}/events",
+        operation_id="job_events",
+        response_class=StreamingResponse,
+        responses=_EVENTS_RESPONSES,
+        summary="Server-sent events of a job's progress and final state",
+    )
+    async def job_events(job_id: JobId, request: Request) -> Any:
+        manager = _manager(request)
+        first = await _job_or_404(manager, job_id)
+        return StreamingResponse(
+            manager.events(job_id, first),
+            media_type="text/event-stream",
+            headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"},
+        )
+
+    @router.get(
+        "/jobs/{job_id}/items.ndjson",
+        operation_id="job_items",
+        response_class=StreamingResponse,
+        responses=_ITEMS_RESPONSES,
+        summary="A batch job's items, streamed as they are answered",
+    )
+    async def job_items(job_id: JobId, request: Request) -> Any:
+        manager = _manager(request)
+        row = await _job_or_404(manager, job_id)
+        operation = manager.operations.get(row["operation"])
+        if operation is None or not operation.has_items:
+            raise Problem("not-found", f"job {job_id!r} is a {row['operation']}: it has no items")
+        return StreamingResponse(manager.item_lines(job_id), media_type="application/x-ndjson")
+
+
+# -------------------------------------------------------------- Prefer: respond-async
+
+
+class JobAccepted(Exception):
+    """Raised by `respond_async`: answer 202 for this job instead of running the endpoint."""
+
+    def __init__(self, response: JSONResponse) -> None:
+        self.response = response
+
+
+def _prefers_async(prefer: str | None) -> bool:
+    """RFC 7240: comma-separated preferences, each a token with optional parameters."""
+    if not prefer:
+        return False
+    tokens = (part.split(";")[0].split("=")[0].strip().lower() for part in prefer.split(","))
+    return "respond-async" in tokens
+
+
+def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
+    """A dependency for the endpoint of `operation`: with ``Prefer: respond-async`` the body is
+    validated as the endpoint would (same 422 problems) and run as a job (202 + Location)."""
+    adapter: TypeAdapter[Any] | None = None
+
+    async def prefer_respond_async(
+        request: Request,
+        prefer: Annotated[
+            str | None,
+            Header(
+                description=(
+                    "`respond-async` (RFC 7240): run this request as a job and answer 202 with "
+                    "`Location: /jobs/{id}` at once."
+                )
+            ),
+        ] = None,
+    ) -> None:
+        nonlocal adapter
+        if not _prefers_async(prefer):
+            return
+        manager = _manager(request)
+        adapter = adapter or TypeAdapter(manager.operations[operation].request_model)
+        try:
+            body = adapter.validate_python(json.loads(await request.body()))
+        except ValidationError as error:
+            errors = [dict(e) | {"loc": ("body", *e["loc"])} for e in error.errors()]
+            raise RequestValidationError(errors) from None
+        job = manager.submit(operation, body, prefix=None)
+        response = _accepted(manager, job.row())
+        response.headers["Preference-Applied"] = "respond-async"
+        raise JobAccepted(response)
+
+    return prefer_respond_async
+
+
+def install(app: FastAPI, manager: JobManager) -> None:
+    """The jobs routes and their exception handler on `app` (the manager in app.state.jobs)."""
+    app.state.jobs = manager
+    app.include_router(make_router(manager.operations))
+
+    async def on_accepted(request: Request, exc: Exception) -> Response:
+        assert isinstance(exc, JobAccepted)
+        return exc.response
+
+    app.add_exception_handler(JobAccepted, on_accepted)

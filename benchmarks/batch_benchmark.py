@@ -1,0 +1,226 @@
+"""Batch throughput: 1,000 solves of varied wings as one batch job (POST /jobs), local pool vs Dask.
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/batch_benchmark.py [--items 1000]
+
+Deployments measured, each a real uvicorn service on loopback (and real `dask scheduler` /
+`dask worker` processes, one thread each, sharing FLEXWING_CACHE_DIR):
+
+- the local pool, FLEXWING_WORKERS=2 (the default on this 2-core machine);
+- Dask with 1 worker, then with 2 workers.
+
+Items: the design study's wing (N = 30, compiled) with its stiffness scaled by 0.8-2.0 and airspeeds
+6-15 m/s at alpha 5 deg, every item a different wing (no warm start, no cached result). Items per
+second are the service's own (started_at to finished_at of the job); "wall" adds the upload and
+parsing of the body. Each deployment runs two batches of new items and reports both, with the CPU
+time per item of the service process and of the workers (Linux /proc; remote workers would need
+their own accounting).
+
+The scheduler's own cost is measured with no-op tasks from a Dask client: the round trip of one
+task at a time, and the throughput of 2,000 tasks submitted at once.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from datetime import datetime
+from pathlib import Path
+from typing import Any
+
+import httpx
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+DASK = Path(sys.executable).with_name("dask")
+READY_TIMEOUT = 300.0  # [s]
+
+
+def item(index: int, count: int, run: int = 0) -> dict[str, Any]:
+    """A /solve body: the study's wing, stiffness x 0.8-2.0, 6-15 m/s (distinct per item and
+    per run, so no run is answered from the result cache)."""
+    rng = np.random.default_rng([index, run])
+    scale = 0.8 + 1.2 * rng.random()
+    y = np.linspace(0, 5, 30)
+    chord = np.sqrt(np.linspace(2, 0.02, 30))
+    return {
+        "wing": {
+            "y": y.tolist(),
+            "chord": chord.tolist(),
+            "elastic_axis": 0.4,
+            "bending_stiffness": (2e4 * chord**3 * scale).tolist(),
+            "torsional_stiffness": (1e3 * chord**3 * scale).tolist(),
+        },
+        "flight": {"velocity": 6.0 + 9.0 * index / max(1, count - 1), "alpha": 5.0},
+    }
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@contextlib.contextmanager
+def process(args: list[str], log: Path, env: dict[str, str]) -> Iterator[subprocess.Popen[bytes]]:
+    with open(log, "wb") as out:
+        child = subprocess.Popen(
+            args, cwd=ROOT, env=env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True
+        )
+    try:
+        yield child
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(child.pid, signal.SIGTERM)
+        try:
+            child.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(child.pid, signal.SIGKILL)
+            child.wait()
+
+
+def wait_ready(base_url: str, workers: int) -> None:
+    deadline = time.monotonic() + READY_TIMEOUT
+    while time.monotonic() < deadline:
+        with contextlib.suppress(httpx.TransportError):
+            body = httpx.get(base_url + "/readyz", timeout=5).json()
+            cluster = body.get("cluster")
+            warm = len(body["pids"]) if cluster is None else sum(w["warm"] for w in cluster)
+            if body["ready"] and warm >= workers:
+                return
+        time.sleep(0.1)
+    raise TimeoutError(f"{base_url} not ready")
+
+
+@contextlib.contextmanager
+def service(tmp: Path, env: dict[str, str], workers: int) -> Iterator[tuple[str, int]]:
+    port = free_port()
+    args = [sys.executable, "-m", "uvicorn", "app.main:app", "--host", "127.0.0.1"]
+    args += ["--port", str(port), "--log-level", "warning", "--timeout-keep-alive", "75"]
+    env = env | {"FLEXWING_JOBS_DB": str(tmp / f"jobs-{port}.sqlite3")}
+    with process(args, tmp / f"service-{port}.log", env) as child:
+        base_url = f"http://127.0.0.1:{port}"
+        wait_ready(base_url, workers)
+        yield base_url, child.pid
+
+
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU time of a process so far [s] (Linux /proc)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def worker_pids(base_url: str) -> list[int]:
+    body = httpx.get(base_url + "/readyz", timeout=5).json()
+    cluster = body.get("cluster")
+    return list(body["pids"]) if cluster is None else [w["pid"] for w in cluster if w["pid"]]
+
+
+def run_batch(base_url: str, items: list[dict[str, Any]]) -> tuple[float, float, dict[str, Any]]:
+    """(items/s of the job, items/s of the wall clock incl. upload, progress)."""
+    with httpx.Client(base_url=base_url, timeout=600) as client:
+        started = time.perf_counter()
+        response = client.post("/jobs", json={"operation": "batch", "request": {"items": items}})
+        response.raise_for_status()
+        location = response.headers["location"]
+        while (job := client.get(location).json())["status"] in ("queued", "running"):
+            time.sleep(0.05)
+        wall = time.perf_counter() - started
+    assert job["status"] == "succeeded", job
+    run = datetime.fromisoformat(job["finished_at"]) - datetime.fromisoformat(job["started_at"])
+    return len(items) / run.total_seconds(), len(items) / wall, job["progress"]
+
+
+@contextlib.contextmanager
+def dask_cluster(tmp: Path, env: dict[str, str], workers: int) -> Iterator[tuple[str, int]]:
+    """(scheduler address, scheduler pid) of a scheduler and `workers` workers (no nanny: the
+    worker pids /readyz reports are the processes doing the work)."""
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    with contextlib.ExitStack() as stack:
+        scheduler = [str(DASK), "scheduler", "--host", "127.0.0.1", "--port", str(port)]
+        log = tmp / "scheduler.log"
+        child = stack.enter_context(process([*scheduler, "--no-dashboard"], log, env))
+        for n in range(workers):
+            args = [str(DASK), "worker", address, "--nthreads", "1", "--no-dashboard"]
+            args += ["--no-nanny", "--name", f"w{n}"]
+            stack.enter_context(process(args, tmp / f"w{n}.log", env))
+        yield address, child.pid
+
+
+def noop(x: int) -> int:
+    return x
+
+
+async def scheduler_cost(address: str) -> tuple[float, float]:
+    """(ms per no-op task one at a time, ms per no-op task of 2,000 submitted at once)."""
+    from distributed import Client
+
+    client = await Client(address, asynchronous=True)
+    try:
+        for warm_up in range(20):
+            await client.submit(noop, warm_up, pure=False).result()
+        started = time.perf_counter()
+        for n in range(200):
+            await client.submit(noop, n, pure=False).result()
+        one_at_a_time = (time.perf_counter() - started) / 200
+        started = time.perf_counter()
+        await client.gather(client.map(noop, range(2000), pure=False))
+        many = (time.perf_counter() - started) / 2000
+    finally:
+        await client.close()
+    return 1000 * one_at_a_time, 1000 * many
+
+
+def report(
+    label: str, count: int, base_url: str, service_pid: int, scheduler_pid: int | None = None
+) -> None:
+    """Two runs of `count` new items; CPU per item of the service, the workers and the Dask
+    scheduler [ms]."""
+    for run in (1, 2):
+        items = [item(i, count, run) for i in range(count)]
+        pids = [[service_pid], worker_pids(base_url), [scheduler_pid] if scheduler_pid else []]
+        before = [sum(cpu_seconds(p) for p in group) for group in pids]
+        job_rate, wall_rate, progress = run_batch(base_url, items)
+        after = [sum(cpu_seconds(p) for p in group) for group in pids]
+        web, work, scheduler = ((a - b) * 1000 / count for a, b in zip(after, before, strict=True))
+        print(
+            f"{label:<22} run {run}: {job_rate:5.0f} items/s (job), {wall_rate:5.0f} items/s "
+            f"(wall); CPU per item: service {web:.1f} ms, workers {work:.1f} ms"
+            + (f", scheduler {scheduler:.1f} ms" if scheduler_pid else "")
+            + f"; problems {progress['problems']}"
+        )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--items", type=int, default=1000)
+    args = parser.parse_args()
+    env = os.environ | {"OPENBLAS_NUM_THREADS": "1", "PYTHONUNBUFFERED": "1"}
+    with tempfile.TemporaryDirectory() as name:
+        tmp = Path(name)
+        print(f"{args.items} solves of varied wings (N = 30) in one batch job")
+        with service(tmp, env | {"FLEXWING_WORKERS": "2"}, 2) as (base_url, pid):
+            report("local pool, 2 workers", args.items, base_url, pid)
+        for workers in (1, 2):
+            with dask_cluster(tmp, env, workers) as (address, scheduler):
+                dask = {"FLEXWING_EXECUTOR": "dask", "FLEXWING_DASK_SCHEDULER": address}
+                with service(tmp, env | dask, workers) as (base_url, pid):
+                    report(f"dask, {workers} worker(s)", args.items, base_url, pid, scheduler)
+                one, many = asyncio.run(scheduler_cost(address))
+                print(
+                    f"dask scheduler, {workers} worker(s): a no-op task takes {one:.1f} ms one at "
+                    f"a time, {many:.2f} ms each when 2,000 are submitted at once"
+                )
+
+
+if __name__ == "__main__":
+    main()
