@@ -16,7 +16,17 @@ from app import schemas
 from app.problems import FieldError, Problem
 from app.schemas import LIMITS
 from app.settings import Settings
-from solver import FlightCondition, InvalidInput, Layout, SolverOptions, Wing
+from solver import (
+    FlightCondition,
+    InvalidInput,
+    Layout,
+    Material,
+    SolverOptions,
+    SparDesign,
+    ThicknessFraction,
+    TrimCondition,
+    Wing,
+)
 
 __all__ = ["SolveInput", "SweepInput", "solve_input", "solver_options", "sweep_input"]
 
@@ -24,16 +34,19 @@ __all__ = ["SolveInput", "SweepInput", "solve_input", "solver_options", "sweep_i
 @dataclass(frozen=True)
 class SolveInput:
     wing: Wing
-    flight: FlightCondition
+    flight: FlightCondition | TrimCondition  # at a given alpha, or trimmed to a lift
     options: SolverOptions
     initial_guess: np.ndarray | None
 
 
 @dataclass(frozen=True)
 class SweepInput:
+    """A sweep at `alpha` [deg], or trimmed to `lift` [N] when `lift` is not None."""
+
     wing: Wing
     velocities: tuple[float, ...]
-    alpha: float
+    alpha: float | None
+    lift: float | None
     density: float
     options: SolverOptions
 
@@ -83,10 +96,25 @@ def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> 
             sweep=model.sweep,
             jig_twist=model.jig_twist,
             airfoil=_airfoil(model.airfoil),
+            spar=None if model.spar is None else _spar(model.spar),
         )
     except InvalidInput as error:
         errors.append(FieldError(f"wing.{error.field}", error.reason))
         return None
+
+
+def _spar(model: schemas.TubeSpar) -> SparDesign:
+    """The request's spar as `solver.Wing.create` takes it."""
+    outer = model.outer_diameter
+    return SparDesign(
+        outer_diameter=(
+            ThicknessFraction(outer.fraction_of_thickness)
+            if isinstance(outer, schemas.ThicknessFraction)
+            else outer
+        ),
+        wall_thickness=model.wall_thickness,
+        material=Material(**model.material.model_dump()),
+    )
 
 
 def _airfoil(spec: object) -> object:
@@ -98,13 +126,33 @@ def _airfoil(spec: object) -> object:
     return spec
 
 
+def _lift(model: schemas.Flight | schemas.SweepFlight) -> float | None:
+    """[N] the lift a trimmed flight holds; None at a given alpha."""
+    if isinstance(model, schemas.FlightAtLift | schemas.SweepFlightAtLift):
+        return model.lift
+    if isinstance(model, schemas.FlightAtWeight | schemas.SweepFlightAtWeight):
+        return model.load_factor * model.weight
+    return None
+
+
 def _flight(
-    velocity: float, alpha: float, density: float, errors: list[FieldError]
-) -> FlightCondition | None:
+    velocity: float,
+    model: schemas.Flight | schemas.SweepFlight,
+    errors: list[FieldError],
+) -> FlightCondition | TrimCondition | None:
+    lift = _lift(model)
     try:
-        return FlightCondition(velocity=velocity, alpha=alpha, density=density)
+        if lift is None:
+            assert isinstance(model, schemas.FlightAtAlpha | schemas.SweepFlightAtAlpha)
+            return FlightCondition(velocity=velocity, alpha=model.alpha, density=model.density)
+        return TrimCondition(velocity=velocity, lift=lift, density=model.density)
     except InvalidInput as error:
-        errors.append(FieldError(f"flight.{error.field}", error.reason))
+        field = error.field
+        if field == "lift" and isinstance(
+            model, schemas.FlightAtWeight | schemas.SweepFlightAtWeight
+        ):
+            field = "load_factor"  # the weight is positive by schema: a zero load factor
+        errors.append(FieldError(f"flight.{field}", error.reason))
         return None
 
 
@@ -134,10 +182,17 @@ def _initial_state(
 def solve_input(request: schemas.SolveRequest, settings: Settings) -> SolveInput:
     errors: list[FieldError] = []
     wing = _wing(request.wing, settings, errors)
-    f = request.flight
-    flight = _flight(f.velocity, f.alpha, f.density, errors)
+    flight = _flight(request.flight.velocity, request.flight, errors)
     guess = None
-    if request.initial_guess is not None and wing is not None:
+    if request.initial_guess is not None and isinstance(flight, TrimCondition):
+        errors.append(
+            FieldError(
+                "initial_guess",
+                "a starting deformation is for flight at a given alpha; a trimmed solve starts "
+                "from the rigid jig trimmed to the same lift",
+            )
+        )
+    elif request.initial_guess is not None and wing is not None:
         guess = _initial_state(request.initial_guess, wing.n_stations, errors)
     if errors or wing is None or flight is None:
         raise Problem.invalid(errors)
@@ -168,8 +223,11 @@ def sweep_input(request: schemas.SweepRequest, settings: Settings) -> SweepInput
     wing = _wing(request.wing, settings, errors)
     velocities = _velocities(request, settings, errors)
     f = request.flight
-    # Airspeeds are in range by schema; this checks alpha and density with the solver's rules.
-    _flight(velocities[0] if velocities else 1.0, f.alpha, f.density, errors)
+    # Airspeeds are in range by schema; this checks the rest with the solver's rules.
+    _flight(velocities[0] if velocities else 1.0, f, errors)
     if errors or wing is None:
         raise Problem.invalid(errors)
-    return SweepInput(wing, tuple(velocities), f.alpha, f.density, solver_options(request.options))
+    alpha = f.alpha if isinstance(f, schemas.SweepFlightAtAlpha) else None
+    return SweepInput(
+        wing, tuple(velocities), alpha, _lift(f), f.density, solver_options(request.options)
+    )

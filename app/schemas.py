@@ -31,16 +31,26 @@ __all__ = [
     "SOLVE_EXAMPLES",
     "SWEEP_EXAMPLES",
     "ClusterWorker",
+    "FLIGHT_RULE",
     "Flight",
+    "FlightAtAlpha",
+    "FlightAtLift",
+    "FlightAtWeight",
     "HealthResponse",
     "InitialGuess",
     "ReadyResponse",
     "SolveRequest",
     "SolveResponse",
     "SolverOptions",
+    "SparMaterial",
     "StationSpacing",
     "SweepFlight",
+    "SweepFlightAtAlpha",
+    "SweepFlightAtLift",
+    "SweepFlightAtWeight",
     "SweepRequest",
+    "ThicknessFraction",
+    "TubeSpar",
     "SweepResponse",
     "VelocityRange",
     "Wing",
@@ -87,6 +97,43 @@ SOLVE_EXAMPLES: dict[str, Any] = {
         "summary": "The same wing at 23 m/s: no equilibrium (422, with the fold speed)",
         "value": _STUDY_SOLVE | {"flight": _STUDY_SOLVE["flight"] | {"velocity": 23.0}},
     },
+    "at_its_weight": {
+        "summary": "The same wing trimmed to carry its 300 N at 12 m/s: alpha is solved for",
+        "value": _STUDY_SOLVE
+        | {
+            "flight": {
+                "velocity": 12.0,
+                "weight": 300.0,
+                "load_factor": 1.0,
+                "density": ISA_SEA_LEVEL_DENSITY,
+            }
+        },
+    },
+    "tube_spar": {
+        "summary": "A carbon tube spar in NACA 0012 sections at its weight: stresses, margin, mass",
+        "value": {
+            "wing": {k: v for k, v in _STUDY_WING.items() if not k.endswith("stiffness")}
+            | {
+                "airfoil": "naca0012",
+                "spar": {
+                    "outer_diameter": {"fraction_of_thickness": 0.8},
+                    "wall_thickness": 0.001,
+                    "material": {
+                        "youngs_modulus": 70e9,
+                        "shear_modulus": 27e9,
+                        "density": 1600.0,
+                        "yield_stress": 600e6,
+                    },
+                },
+            },
+            "flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 2.5},
+            "options": {"safety_factor": 1.5},
+        },
+    },
+    "pull_up": {
+        "summary": "A 2 g pull-up at 15 m/s: twice the lift",
+        "value": _STUDY_SOLVE | {"flight": {"velocity": 15.0, "weight": 300.0, "load_factor": 2.0}},
+    },
 }
 SWEEP_EXAMPLES: dict[str, Any] = {
     "study": {
@@ -96,6 +143,15 @@ SWEEP_EXAMPLES: dict[str, Any] = {
     "to_the_fold": {
         "summary": "Past the fold: 22 and 23 m/s have no equilibrium",
         "value": _STUDY_SWEEP_REQUEST | {"velocities": [10.0, 15.0, 20.0, 21.0, 22.0, 23.0]},
+    },
+    "at_its_weight": {
+        "summary": "The study's wing trimmed to its 300 N from 8 to 26 m/s: alpha per airspeed, "
+        "and the trimmed divergence limit",
+        "value": _STUDY_SWEEP_REQUEST
+        | {
+            "flight": {"weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "velocities": [8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 24.0, 26.0],
+        },
     },
 }
 
@@ -118,12 +174,22 @@ LIMITS: dict[str, Limit] = {
     "velocity": Limit(0.01, 1000.0, "m/s", "the lattice is incompressible: Mach 3 is far past it"),
     "alpha": Limit(-30.0, 30.0, "deg", "an attached-flow lattice means nothing beyond"),
     "density": Limit(1e-4, 2000.0, "kg/m^3", "the stratosphere to sea water (hydrofoils)"),
+    "lift": Limit(-1e9, 1e9, "N", "up to a thousand airliners' weight, either sign; not 0"),
+    "weight": Limit(1e-6, 1e9, "N", "a milligram to a thousand airliners"),
+    "load_factor": Limit(-10.0, 10.0, "-", "past any aircraft's manoeuvre envelope; not 0"),
     "heave": Limit(-1e4, 1e4, "m", "a starting deformation"),
     "slope": Limit(-1e3, 1e3, "-", "a starting deformation"),
     "twist": Limit(-360.0, 360.0, "deg", "a starting deformation"),
     "jig_twist": Limit(-30.0, 30.0, "deg", "a built-in twist the lattice can mean"),
     "camber_x": Limit(0.0, 1.0, "-", "fractions of the chord"),
     "camber": Limit(-0.2, 0.2, "-", "a thin airfoil's mean line"),
+    "spar_diameter": Limit(1e-4, 10.0, "m", "a model's carbon rod to a bridge girder"),
+    "wall_thickness": Limit(1e-5, 5.0, "m", "10 micrometres to a solid 10 m rod"),
+    "thickness_fraction": Limit(0.01, 1.0, "-", "the tube fits inside the section"),
+    "modulus": Limit(1e6, 1e13, "Pa", "foam to diamond"),
+    "material_density": Limit(1.0, 25000.0, "kg/m^3", "foam to osmium"),
+    "yield_stress": Limit(1e3, 1e11, "Pa", "foam to the strongest fibres"),
+    "safety_factor": Limit(1.0, 10.0, "-", "none to very conservative"),
 }
 
 
@@ -242,6 +308,59 @@ def _one_or_per_station(value: Any) -> str:
     return "@list" if isinstance(value, list) else "@one"
 
 
+SparDiameterNumber = Annotated[float, _range("spar_diameter")]
+WallThicknessNumber = Annotated[float, _range("wall_thickness")]
+
+
+class SparMaterial(_Model):
+    """An isotropic spar material (e.g. carbon-fibre tube: E 70 GPa, G 27 GPa, 1600 kg/m^3,
+    yield 600 MPa; aluminium 7075: 71.7 GPa, 26.9 GPa, 2810 kg/m^3, 503 MPa)."""
+
+    youngs_modulus: float = _ranged("modulus", "Young's modulus E,", examples=[70e9])
+    shear_modulus: float = _ranged("modulus", "shear modulus G,", examples=[27e9])
+    density: float = _ranged("material_density", "density,", examples=[1600.0])
+    yield_stress: float = _ranged(
+        "yield_stress", "von Mises stress at which it yields,", examples=[600e6]
+    )
+
+
+class ThicknessFraction(_Model):
+    """The outer diameter as a fraction of each section's airfoil thickness (known for NACA
+    4-digit sections)."""
+
+    fraction_of_thickness: float = _ranged(
+        "thickness_fraction", "outer diameter over the airfoil's thickness,", examples=[0.8]
+    )
+
+
+def _diameter_kind(value: Any) -> str:
+    if isinstance(value, list):
+        return "@list"
+    return "@fraction" if isinstance(value, dict) else "@number"
+
+
+class TubeSpar(_Model):
+    """A circular tube spar per station: EI = E pi/64 (D^4 - d^4), GJ = G pi/32 (D^4 - d^4) with
+    d = D - 2t (thick-walled); stresses at the outer fibre and the spar's mass are reported."""
+
+    outer_diameter: Annotated[
+        Annotated[SparDiameterNumber, Tag("@number")]
+        | Annotated[
+            list[SparDiameterNumber], Field(min_length=MIN_STATIONS), PerStation, Tag("@list")
+        ]
+        | Annotated[ThicknessFraction, Tag("@fraction")],
+        Discriminator(_diameter_kind),
+    ] = Field(
+        description="[m] outer diameter D, each 1e-4 to 10: one number for every station, N "
+        "values, or {fraction_of_thickness} of a NACA 4-digit section's thickness.",
+        examples=[0.04, {"fraction_of_thickness": 0.8}],
+    )
+    wall_thickness: StationValues[WallThicknessNumber] = _described(
+        "wall_thickness", "wall thickness t, at most D / 2 (a solid rod),", examples=[0.001]
+    )
+    material: SparMaterial
+
+
 class Wing(_Model):
     """A symmetric wing described on its right half at N stations from the root.
 
@@ -270,15 +389,23 @@ class Wing(_Model):
         "elastic-axis position as a fraction of chord from the leading edge,",
         examples=[0.4],
     )
-    bending_stiffness: StationValues[StiffnessNumber] = _described(
+    bending_stiffness: StationValues[StiffnessNumber] | None = _described(
         "stiffness",
-        "flapwise bending stiffness EI at each station,",
+        "flapwise bending stiffness EI at each station (required unless `spar` is given),",
+        default=None,
         examples=[_STUDY_WING["bending_stiffness"]],
     )
-    torsional_stiffness: StationValues[StiffnessNumber] = _described(
+    torsional_stiffness: StationValues[StiffnessNumber] | None = _described(
         "stiffness",
-        "torsional stiffness GJ at each station,",
+        "torsional stiffness GJ at each station (required unless `spar` is given),",
+        default=None,
         examples=[_STUDY_WING["torsional_stiffness"]],
+    )
+    spar: TubeSpar | None = Field(
+        default=None,
+        description="A tube spar EI and GJ follow from, instead of bending_stiffness and "
+        "torsional_stiffness (give one or the other); with it the response adds stresses, "
+        "failure margin and spar mass.",
     )
     sweep: float = Field(
         default=0.0,
@@ -329,19 +456,113 @@ def _density() -> Any:
     )
 
 
-class Flight(_Model):
-    """Steady, symmetric flight."""
+class FlightAtAlpha(_Model):
+    """Steady, symmetric flight at a given angle of attack."""
 
     velocity: float = _velocity()
     alpha: float = _alpha()
     density: float = _density()
 
 
-class SweepFlight(_Model):
-    """Steady, symmetric flight; the airspeeds come from `velocities`."""
+def _lift() -> Any:
+    return _ranged(
+        "lift",
+        "lift of both halves to carry, nonzero; the angle of attack is solved for,",
+        examples=[300.0],
+    )
+
+
+def _weight() -> Any:
+    return _ranged(
+        "weight",
+        "weight to carry; lift = load_factor * weight and the angle of attack is solved for,",
+        examples=[300.0],
+    )
+
+
+def _load_factor() -> Any:
+    return _ranged("load_factor", "load factor n, nonzero,", default=1.0, examples=[1.0])
+
+
+class FlightAtLift(_Model):
+    """Trimmed flight: the angle of attack at which the flexible wing carries `lift`."""
+
+    velocity: float = _velocity()
+    lift: float = _lift()
+    density: float = _density()
+
+
+class FlightAtWeight(_Model):
+    """Trimmed flight: the angle of attack at which the flexible wing carries
+    `load_factor * weight`."""
+
+    velocity: float = _velocity()
+    weight: float = _weight()
+    load_factor: float = _load_factor()
+    density: float = _density()
+
+
+_FLIGHT_WAYS = ("alpha", "lift", "weight")
+FLIGHT_RULE = (
+    "give exactly one of alpha (at a given angle of attack), lift, or weight with an optional "
+    "load_factor (trimmed: the angle of attack is solved for)"
+)
+
+
+def _flight_way(value: Any) -> str | None:
+    """The tag of the one way the flight is given; None if none or several are."""
+    if not isinstance(value, dict):
+        return "@alpha"  # not an object at all: let the model say so
+    given = [way for way in _FLIGHT_WAYS if way in value]
+    if "load_factor" in value and "weight" not in value:
+        return None
+    return f"@{given[0]}" if len(given) == 1 else None
+
+
+def _one_way() -> Any:
+    return Discriminator(
+        _flight_way,
+        custom_error_type="flight_way",
+        custom_error_message=FLIGHT_RULE,
+    )
+
+
+Flight = Annotated[
+    Annotated[FlightAtAlpha, Tag("@alpha")]
+    | Annotated[FlightAtLift, Tag("@lift")]
+    | Annotated[FlightAtWeight, Tag("@weight")],
+    _one_way(),
+]
+
+
+class SweepFlightAtAlpha(_Model):
+    """Steady, symmetric flight at a given angle of attack; airspeeds from `velocities`."""
 
     alpha: float = _alpha()
     density: float = _density()
+
+
+class SweepFlightAtLift(_Model):
+    """Trimmed flight carrying `lift` at every airspeed of `velocities`."""
+
+    lift: float = _lift()
+    density: float = _density()
+
+
+class SweepFlightAtWeight(_Model):
+    """Trimmed flight carrying `load_factor * weight` at every airspeed of `velocities`."""
+
+    weight: float = _weight()
+    load_factor: float = _load_factor()
+    density: float = _density()
+
+
+SweepFlight = Annotated[
+    Annotated[SweepFlightAtAlpha, Tag("@alpha")]
+    | Annotated[SweepFlightAtLift, Tag("@lift")]
+    | Annotated[SweepFlightAtWeight, Tag("@weight")],
+    _one_way(),
+]
 
 
 class SolverOptions(_Model):
@@ -375,6 +596,12 @@ class SolverOptions(_Model):
             "[-] panels per strip, 1 to 8, cosine spaced (AeroSandbox's default): more resolve "
             "the camber's pitching moment; 1 is the design study's model."
         ),
+    )
+    safety_factor: float = _ranged(
+        "safety_factor",
+        "factor on the spar's largest von Mises stress in its failure margin, "
+        "yield / (safety_factor * max von Mises) - 1,",
+        default=1.0,
     )
     torque_axis: Literal["undeformed", "deformed"] = Field(
         default="undeformed",
@@ -422,7 +649,7 @@ class SolveRequest(_Model):
     )
 
     wing: Wing
-    flight: Flight
+    flight: Flight = Field(description=f"The flight condition: {FLIGHT_RULE}.")
     initial_guess: InitialGuess | None = Field(
         default=None, description="Optional starting deformation for Newton."
     )
@@ -453,7 +680,7 @@ class SweepRequest(_Model):
     )
 
     wing: Wing
-    flight: SweepFlight
+    flight: SweepFlight = Field(description=f"The flight condition: {FLIGHT_RULE}.")
     velocities: Annotated[
         Annotated[
             list[VelocityNumber],

@@ -90,9 +90,8 @@ class Service:
         key = (
             "solve",
             inputs.wing.key,
-            flight.velocity,
-            flight.alpha,
-            flight.density,
+            type(flight).__name__,
+            dataclasses.astuple(flight),
             dataclasses.astuple(inputs.options),
             None if inputs.initial_guess is None else inputs.initial_guess.tobytes(),
         )
@@ -119,6 +118,7 @@ class Service:
             inputs.wing.key,
             inputs.velocities,
             inputs.alpha,
+            inputs.lift,
             inputs.density,
             dataclasses.astuple(inputs.options),
         )
@@ -126,7 +126,12 @@ class Service:
         if isinstance(hit, dict):
             return _cached(hit)
         job = worker.SweepJob(
-            inputs.wing, inputs.velocities, inputs.alpha, inputs.density, inputs.options
+            inputs.wing,
+            inputs.velocities,
+            inputs.alpha,
+            inputs.density,
+            inputs.options,
+            inputs.lift,
         )
         outcome = await self._run(worker.run_sweep, job, self.settings.sweep_timeout, "sweep")
         self.metrics.solves.labels("sweep", "completed").inc()

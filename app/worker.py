@@ -25,9 +25,12 @@ from solver import (
     NoEquilibrium,
     SolverError,
     SolverOptions,
+    TrimCondition,
     Wing,
     solve,
     sweep,
+    trim,
+    trim_sweep,
     warm_up,
 )
 
@@ -54,18 +57,21 @@ log = logging.getLogger(__name__)
 @dataclass(frozen=True)
 class SolveJob:
     wing: Wing
-    flight: FlightCondition
+    flight: FlightCondition | TrimCondition  # trimmed: alpha is solved for
     options: SolverOptions
     initial_guess: np.ndarray | None = None  # (n,) the caller's own starting state
 
 
 @dataclass(frozen=True)
 class SweepJob:
+    """At `alpha` [deg], or trimmed to `lift` [N] when it is not None."""
+
     wing: Wing
     velocities: tuple[float, ...]
-    alpha: float
+    alpha: float | None
     density: float
     options: SolverOptions
+    lift: float | None = None
 
 
 @dataclass(frozen=True)
@@ -167,12 +173,19 @@ def _failure(error: SolverError, velocity: float) -> Failure:
 def run_solve(job: SolveJob) -> SolveOutcome:
     """One equilibrium, or the reason there is none."""
     try:
-        equilibrium = solve(job.wing, job.flight, job.initial_guess, job.options)
+        if isinstance(job.flight, TrimCondition):
+            equilibrium = trim(job.wing, job.flight, job.options)
+        else:
+            equilibrium = solve(job.wing, job.flight, job.initial_guess, job.options)
     except SolverError as error:
         return SolveOutcome(None, _failure(error, job.flight.velocity))
     return SolveOutcome(payload(equilibrium), None)
 
 
 def run_sweep(job: SweepJob) -> SweepOutcome:
-    result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
+    if job.lift is not None:
+        result = trim_sweep(job.wing, list(job.velocities), job.lift, job.density, job.options)
+    else:
+        assert job.alpha is not None
+        result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
     return SweepOutcome(payload(result))

@@ -50,6 +50,7 @@ from solver.results import (
     Totals,
 )
 from solver.solve import solve
+from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 from solver.sweep import sweep
 from solver.trim import rigid_trim_alpha, trim, trim_sweep, trimmed_divergence_limit
 from solver.warm import warm_up
@@ -67,19 +68,23 @@ __all__ = [
     "InvalidInput",
     "Layout",
     "LinearDivergence",
+    "Material",
     "NoEquilibrium",
     "Panels",
     "PointFailure",
     "SolveInfo",
     "SolverError",
     "SolverOptions",
+    "SparDesign",
     "Stability",
     "Stations",
     "SweepInfo",
     "SweepPoint",
     "SweepResult",
+    "ThicknessFraction",
     "Totals",
     "TrimCondition",
+    "TubeSpar",
     "Wing",
     "cache_info",
     "clear_caches",

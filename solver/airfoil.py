@@ -34,6 +34,7 @@ class CamberLine:
     x: np.ndarray
     camber: np.ndarray
     naca: tuple[float, float] | None = None
+    thickness: float | None = None  # [-] of the chord, when known (NACA 4-digit)
 
     def at(self, x: np.ndarray) -> np.ndarray:
         """camber / chord at x / chord [-]."""
@@ -66,9 +67,10 @@ def camber_line(spec: object, field: str = "airfoil") -> CamberLine:
         if match is None:
             raise InvalidInput(field, f"{spec!r} is not a NACA 4-digit designation like 'naca4412'")
         m, p = int(match.group(1)) / 100, int(match.group(2)) / 10
+        thickness = int(match.group(3)) / 100
         if (m == 0) != (p == 0):
             raise InvalidInput(field, f"{spec!r}: camber and its position must be both zero or not")
-        return CamberLine(np.array([0.0, 1.0]), np.zeros(2), (m, p))
+        return CamberLine(np.array([0.0, 1.0]), np.zeros(2), (m, p), thickness or None)
     if isinstance(spec, dict) and set(spec) == {"x", "camber"}:
         try:
             x = np.asarray(spec["x"], dtype=float)

@@ -66,7 +66,9 @@ def judge(
         rigid, unloaded = at_alpha.rigid, at_alpha.unloaded
     else:
         unloaded = False
-    stations, panels, totals = equilibrium_loads(system, x, q, rigid, unloaded)
+    stations, panels, totals = equilibrium_loads(
+        system, x, q, rigid, unloaded, options.safety_factor
+    )
     return Equilibrium(
         wing=system.wing,
         flight=flight,

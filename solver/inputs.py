@@ -17,6 +17,7 @@ import numpy as np
 
 from solver.airfoil import CamberLine, camber_line
 from solver.errors import InvalidInput
+from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 
 __all__ = [
     "ISA_SEA_LEVEL_DENSITY",
@@ -70,6 +71,28 @@ def _station_array(name: str, values: object, n: int | None) -> np.ndarray:
     return array
 
 
+def _tube_spar(design: SparDesign, chord: np.ndarray, camber: tuple[CamberLine, ...]) -> TubeSpar:
+    """The design's tube, its outer diameter resolved station by station."""
+    if not isinstance(design, SparDesign):
+        raise InvalidInput("spar", "must be a solver.SparDesign")
+    if not isinstance(design.material, Material):
+        raise InvalidInput("spar.material", "must be a solver.Material")
+    n = chord.shape[0]
+    if isinstance(design.outer_diameter, ThicknessFraction):
+        thickness = [line.thickness for line in camber]
+        if any(t is None for t in thickness):
+            raise InvalidInput(
+                "spar.outer_diameter",
+                "a fraction of the airfoil thickness needs sections whose thickness is known "
+                "(NACA 4-digit designations); give the diameter in metres instead",
+            )
+        outer = design.outer_diameter.fraction * np.array(thickness, dtype=float) * chord
+    else:
+        outer = _station_array("spar.outer_diameter", design.outer_diameter, n)
+    wall = _station_array("spar.wall_thickness", design.wall_thickness, n)
+    return TubeSpar(outer, wall, design.material)
+
+
 @dataclass(frozen=True, eq=False)
 class Wing:
     """A symmetric flexible wing (right half; the left half is mirrored).
@@ -85,6 +108,7 @@ class Wing:
             |sweep| < 60. Sections stay streamwise.
         jig_twist: (N,) [deg] built-in twist of each section, nose-up > 0.
         camber: (N,) the sections' camber lines (`solver.airfoil`).
+        spar: the tube spar EI and GJ come from (`solver.spar`), or None when they were given.
     """
 
     y: np.ndarray
@@ -95,6 +119,7 @@ class Wing:
     sweep: float = 0.0
     jig_twist: np.ndarray | None = None
     camber: tuple[CamberLine, ...] = ()
+    spar: TubeSpar | None = None
 
     @classmethod
     def create(
@@ -102,16 +127,17 @@ class Wing:
         y: object,
         chord: object,
         elastic_axis: object,
-        bending_stiffness: object,
-        torsional_stiffness: object,
+        bending_stiffness: object = None,
+        torsional_stiffness: object = None,
         *,
         sweep: object = 0.0,
         jig_twist: object = 0.0,
         airfoil: object = None,
+        spar: SparDesign | None = None,
     ) -> Wing:
         """Validate and normalise inputs; any per-station input may be one number for all, and
         `airfoil` one camber line for all (None, "naca4412", {"x": [...], "camber": [...]}) or
-        a list of N."""
+        a list of N. Give the stiffnesses, or a `spar` they follow from, not both."""
         y_arr = _station_array("y", y, None)
         n = y_arr.shape[0]
         if n < MIN_STATIONS:
@@ -127,6 +153,29 @@ class Wing:
             )
         chord_arr = _station_array("chord", chord, n)
         elastic_axis_arr = _station_array("elastic_axis", elastic_axis, n)
+        if isinstance(airfoil, list | tuple):
+            if len(airfoil) != n:
+                raise InvalidInput("airfoil", f"has {len(airfoil)} sections but y has {n} stations")
+            camber = tuple(camber_line(a, f"airfoil[{i}]") for i, a in enumerate(airfoil))
+        else:
+            camber = (camber_line(airfoil),) * n
+        tube = None
+        if spar is not None:
+            if bending_stiffness is not None or torsional_stiffness is not None:
+                raise InvalidInput(
+                    "spar", "give a spar or bending_stiffness and torsional_stiffness, not both"
+                )
+            tube = _tube_spar(spar, chord_arr, camber)
+            bending_stiffness, torsional_stiffness = (
+                tube.bending_stiffness,
+                tube.torsional_stiffness,
+            )
+        for name, given in (
+            ("bending_stiffness", bending_stiffness),
+            ("torsional_stiffness", torsional_stiffness),
+        ):
+            if given is None:
+                raise InvalidInput(name, "is required unless a spar is given")
         ei = _station_array("bending_stiffness", bending_stiffness, n)
         gj = _station_array("torsional_stiffness", torsional_stiffness, n)
         for name, values in (
@@ -146,13 +195,17 @@ class Wing:
                 "sweep", f"must lie strictly between -{MAX_SWEEP:g} and {MAX_SWEEP:g} deg"
             )
         jig = _station_array("jig_twist", jig_twist, n)
-        if isinstance(airfoil, list | tuple):
-            if len(airfoil) != n:
-                raise InvalidInput("airfoil", f"has {len(airfoil)} sections but y has {n} stations")
-            camber = tuple(camber_line(a, f"airfoil[{i}]") for i, a in enumerate(airfoil))
-        else:
-            camber = (camber_line(airfoil),) * n
-        return cls(y_arr, chord_arr, elastic_axis_arr, ei, gj, float(sweep) + 0.0, jig, camber)  # type: ignore[arg-type]
+        return cls(
+            y_arr,
+            chord_arr,
+            elastic_axis_arr,
+            ei,
+            gj,
+            float(sweep) + 0.0,  # type: ignore[arg-type]
+            jig,
+            camber,
+            tube,
+        )
 
     @property
     def n_stations(self) -> int:
@@ -184,6 +237,8 @@ class Wing:
             digest.update(np.ascontiguousarray(array + 0.0, dtype=np.float64).tobytes())
         for line in self.camber:
             digest.update(line.key)
+        if self.spar is not None:
+            digest.update(self.spar.key)
         return digest.hexdigest()
 
     def arrays(self) -> tuple[np.ndarray, ...]:
@@ -308,6 +363,7 @@ class SolverOptions:
     chordwise_panels: k, panels per strip (1 to 8, cosine spaced as AeroSandbox's).
     torque_axis: "undeformed" (the study's: torque about the undeformed elastic axis) or
         "deformed" (arms from the heaved elastic-axis point).
+    safety_factor: [-] 1 to 10, what a spar's failure margin asks of it (`Totals`).
     """
 
     tolerance: float = 1e-10
@@ -315,6 +371,7 @@ class SolverOptions:
     find_fold: bool = False
     chordwise_panels: int = 1
     torque_axis: Literal["undeformed", "deformed"] = "undeformed"
+    safety_factor: float = 1.0
 
     def __post_init__(self) -> None:
         if not (_is_number(self.tolerance) and 0 < self.tolerance < 1):
@@ -328,3 +385,5 @@ class SolverOptions:
             )
         if self.torque_axis not in ("undeformed", "deformed"):
             raise InvalidInput("torque_axis", "must be 'undeformed' or 'deformed'")
+        if not (_is_number(self.safety_factor) and 1 <= self.safety_factor <= 10):
+            raise InvalidInput("safety_factor", "must be a number from 1 to 10")

@@ -8,6 +8,7 @@ and moment (`solver.residual`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -16,6 +17,7 @@ import numpy as np
 from solver.geometry import DEG
 from solver.inputs import Wing
 from solver.results import Panels, Stations, Totals
+from solver.spar import TubeSpar
 from solver.system import CoupledSystem
 
 __all__ = [
@@ -121,6 +123,7 @@ def equilibrium_loads(
     q: float,
     rigid: RigidLoads,
     unloaded: bool = False,
+    safety_factor: float = 1.0,
 ) -> tuple[Stations, Panels, Totals]:
     """Every reported quantity of the state x at dynamic pressure q [Pa].
 
@@ -153,6 +156,8 @@ def equilibrium_loads(
         shear=shear,
         bending_moment=bending_moment,
         torque=torque,
+        bending_stiffness=wing.bending_stiffness,
+        torsional_stiffness=wing.torsional_stiffness,
     )
     panels = Panels(
         y=loads.per_strip(center[1], k) / k,
@@ -183,4 +188,33 @@ def equilibrium_loads(
         alpha=system.alpha,
         rigid_root_bending_moment=q * rigid.root_bending_moment,
     )
+    if wing.spar is not None:
+        stations, totals = _with_spar(wing, wing.spar, stations, totals, safety_factor)
     return stations, panels, totals
+
+
+def _with_spar(
+    wing: Wing, spar: TubeSpar, stations: Stations, totals: Totals, safety_factor: float
+) -> tuple[Stations, Totals]:
+    """The spar's stresses, margin and mass added to the answer."""
+    stress = spar.stresses(stations.bending_moment, stations.torque)
+    worst = int(np.argmax(stress.von_mises))
+    largest = float(stress.von_mises[worst])
+    margin = spar.material.yield_stress / (safety_factor * largest) - 1 if largest > 0 else None
+    root_section = spar.outer_diameter[0] / 2 / spar.second_moment[0]  # [1/m^3]
+    stations = dataclasses.replace(
+        stations,
+        bending_stress=stress.bending,
+        shear_stress=stress.shear,
+        von_mises_stress=stress.von_mises,
+    )
+    totals = dataclasses.replace(
+        totals,
+        max_von_mises_stress=largest,
+        max_von_mises_y=float(wing.y[worst]),
+        failure_margin=margin,
+        spar_mass=spar.mass(wing.y / math.cos(wing.sweep * DEG)),
+        root_bending_stress=float(stress.bending[0]),
+        rigid_root_bending_stress=float(totals.rigid_root_bending_moment * root_section),
+    )
+    return stations, totals

@@ -67,6 +67,29 @@ class Stations:
     shear: np.ndarray = quantity("N", "vertical shear force carried at the station")
     bending_moment: np.ndarray = quantity("N m", "flapwise bending moment")
     torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+    bending_stiffness: np.ndarray | None = quantity(
+        "N m^2", "EI: as given, or from the spar", default=None
+    )
+    torsional_stiffness: np.ndarray | None = quantity(
+        "N m^2", "GJ: as given, or from the spar", default=None
+    )
+    bending_stress: np.ndarray | None = quantity(
+        "Pa",
+        "spar only (else null): bending stress at the outer fibre, M (D/2) / I; positive where "
+        "the tip bends up (lower fibre in tension, upper in compression by as much)",
+        default=None,
+    )
+    shear_stress: np.ndarray | None = quantity(
+        "Pa",
+        "spar only (else null): torsional shear stress at the outer fibre, T (D/2) / J",
+        default=None,
+    )
+    von_mises_stress: np.ndarray | None = quantity(
+        "Pa",
+        "spar only (else null): von Mises stress at the outer fibre, "
+        "sqrt(bending_stress^2 + 3 shear_stress^2)",
+        default=None,
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -131,6 +154,30 @@ class Totals:
     )
     rigid_alpha: float | None = quantity(
         "deg", "trimmed flight: the rigid jig's angle of attack for the same lift", default=None
+    )
+    max_von_mises_stress: float | None = quantity(
+        "Pa", "spar only (else null): the largest von Mises stress in the spar", default=None
+    )
+    max_von_mises_y: float | None = quantity(
+        "m", "spar only (else null): the station where it acts", default=None
+    )
+    failure_margin: float | None = quantity(
+        "-",
+        "spar only (else null): yield_stress / (safety_factor * max_von_mises_stress) - 1; "
+        "negative: the spar yields",
+        default=None,
+    )
+    spar_mass: float | None = quantity(
+        "kg", "spar only (else null): mass of the spar, both halves", default=None
+    )
+    root_bending_stress: float | None = quantity(
+        "Pa", "spar only (else null): bending stress at the root's outer fibre", default=None
+    )
+    rigid_root_bending_stress: float | None = quantity(
+        "Pa",
+        "spar only (else null): the same for the rigid jig at the same condition (trimmed: at "
+        "the same lift, where the difference is what flexibility costs the spar)",
+        default=None,
     )
     lift_effectiveness: float | None = quantity(
         "-",
