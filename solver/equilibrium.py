@@ -53,12 +53,14 @@ def judge(
     started: float,
     branch: Literal["jig", "other"] = "jig",
     rigid: RigidLoads | None = None,
+    stability: Stability | None = None,
 ) -> Equilibrium:
     """The converged state x at `flight` with every reported quantity and its verdict.
 
     `evaluation`: r0, r1 at x, Jacobians at x or one Newton step away; `started`: the
     `time.perf_counter()` at which the solve began; `rigid`: the rigid loads per unit q to
-    compare with (default: the jig's at the same alpha).
+    compare with (default: the jig's at the same alpha); `stability`: the verdict, when the
+    caller has it already (`stability_of` at the same state).
     """
     q = flight.dynamic_pressure
     if rigid is None:
@@ -78,7 +80,7 @@ def judge(
         stations=stations,
         panels=panels,
         totals=totals,
-        stability=stability_of(system, flight, evaluation, branch),
+        stability=stability or stability_of(system, flight, evaluation, branch),
         solver=SolveInfo(
             iterations=iterations,
             residual_norm=residual_norm,

@@ -40,14 +40,12 @@ class CoupledSystem:
         """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
         model and every other parameter: a trimmed solve changes alpha at every iteration)."""
         other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
-        known = self.__dict__
-        if "parameters" in known:
-            parameters = known["parameters"].copy()
-            parameters[self.layout.alpha_index] = alpha
-            other.__dict__["parameters"] = parameters
-        for name in ("layout", "model"):
-            if name in known:
-                other.__dict__[name] = known[name]
+        parameters = self.parameters.copy()
+        parameters[self.layout.alpha_index] = alpha
+        other.__dict__["parameters"] = parameters
+        other.__dict__["layout"] = self.layout
+        if "model" in self.__dict__:
+            other.__dict__["model"] = self.__dict__["model"]
         return other
 
     @cached_property

@@ -308,6 +308,7 @@ def _answer(
         warm_start=False,
         started=started,
         rigid=rigid_loads(point.system.at_alpha(point.rigid_alpha), point.rigid_state),
+        stability=stability,
     )
     # dl/dalpha of the flexible wing at fixed q: the state answers alpha through J dx = -dr.
     response = np.linalg.solve(point.evaluation.jacobian(q), -point.alpha_column)
