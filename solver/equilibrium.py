@@ -1,4 +1,5 @@
-"""From a converged state to an `Equilibrium`: its loads and its static-stability verdict."""
+"""From a converged state to an `Equilibrium`: its loads, its static-stability verdict and where
+it leaves the model's validity."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from solver.loads import RigidLoads, equilibrium_loads
 from solver.results import Equilibrium, SolveInfo, Stability
 from solver.stability import divergence_pressure
 from solver.system import CoupledSystem
+from solver.validity import assess
 
 __all__ = ["judge", "stability_of"]
 
@@ -60,7 +62,8 @@ def judge(
     `evaluation`: r0, r1 at x, Jacobians at x or one Newton step away; `started`: the
     `time.perf_counter()` at which the solve began; `rigid`: the rigid loads per unit q to
     compare with (default: the jig's at the same alpha); `stability`: the verdict, when the
-    caller has it already (`stability_of` at the same state).
+    caller has it already (`stability_of` at the same state). The findings of `validity`
+    (`solver.validity`) read the answer only.
     """
     q = flight.dynamic_pressure
     if rigid is None:
@@ -71,6 +74,7 @@ def judge(
     stations, panels, totals = equilibrium_loads(
         system, x, q, rigid, unloaded, options.safety_factor
     )
+    stability = stability or stability_of(system, flight, evaluation, branch)
     return Equilibrium(
         wing=system.wing,
         flight=flight,
@@ -80,11 +84,14 @@ def judge(
         stations=stations,
         panels=panels,
         totals=totals,
-        stability=stability or stability_of(system, flight, evaluation, branch),
+        stability=stability,
         solver=SolveInfo(
             iterations=iterations,
             residual_norm=residual_norm,
             warm_start=warm_start,
             seconds=time.perf_counter() - started,
+        ),
+        validity=assess(
+            system, flight, options.validity, x, evaluation, stations, panels, stability
         ),
     )

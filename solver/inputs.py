@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import hashlib
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -28,6 +28,7 @@ __all__ = [
     "FlightCondition",
     "SolverOptions",
     "TrimCondition",
+    "ValidityLimits",
     "Wing",
 ]
 
@@ -109,6 +110,9 @@ class Wing:
         jig_twist: (N,) [deg] built-in twist of each section, nose-up > 0.
         camber: (N,) the sections' camber lines (`solver.airfoil`).
         spar: the tube spar EI and GJ come from (`solver.spar`), or None when they were given.
+        cl_max: (N,) [-] the sections' maximum lift coefficient, > 0, or None: then
+            `ValidityLimits.cl_max` applies. Says when a section stalls (`solver.validity`);
+            the equilibrium does not depend on it (an inviscid lattice never stalls).
     """
 
     y: np.ndarray
@@ -120,6 +124,7 @@ class Wing:
     jig_twist: np.ndarray | None = None
     camber: tuple[CamberLine, ...] = ()
     spar: TubeSpar | None = None
+    cl_max: np.ndarray | None = None
 
     @classmethod
     def create(
@@ -134,10 +139,13 @@ class Wing:
         jig_twist: object = 0.0,
         airfoil: object = None,
         spar: SparDesign | None = None,
+        cl_max: object = None,
     ) -> Wing:
         """Validate and normalise inputs; any per-station input may be one number for all, and
         `airfoil` one camber line for all (None, "naca4412", {"x": [...], "camber": [...]}) or
-        a list of N. Give the stiffnesses, or a `spar` they follow from, not both."""
+        a list of N. Give the stiffnesses, or a `spar` they follow from, not both. `cl_max`:
+        the sections' maximum lift coefficient (one number or N), or None for the default of
+        `ValidityLimits`."""
         y_arr = _station_array("y", y, None)
         n = y_arr.shape[0]
         if n < MIN_STATIONS:
@@ -195,6 +203,9 @@ class Wing:
                 "sweep", f"must lie strictly between -{MAX_SWEEP:g} and {MAX_SWEEP:g} deg"
             )
         jig = _station_array("jig_twist", jig_twist, n)
+        stall = None if cl_max is None else _station_array("cl_max", cl_max, n)
+        if stall is not None and not np.all(stall > 0):
+            raise InvalidInput("cl_max", "must be positive at every station")
         return cls(
             y_arr,
             chord_arr,
@@ -205,6 +216,7 @@ class Wing:
             jig,
             camber,
             tube,
+            stall,
         )
 
     @property
@@ -239,6 +251,9 @@ class Wing:
             digest.update(line.key)
         if self.spar is not None:
             digest.update(self.spar.key)
+        if self.cl_max is not None:  # what is said about the answer, so a part of its identity
+            digest.update(b"cl_max")
+            digest.update(np.ascontiguousarray(self.cl_max + 0.0, dtype=np.float64).tobytes())
         return digest.hexdigest()
 
     def arrays(self) -> tuple[np.ndarray, ...]:
@@ -353,6 +368,90 @@ class TrimCondition:
         return TrimCondition(velocity=velocity, lift=self.lift, density=self.density)
 
 
+def _limit(default: float, unit: str, description: str) -> Any:
+    """A limit of `ValidityLimits`: its default, unit and why (the API's schema reads them)."""
+    return field(default=default, metadata={"unit": unit, "description": description})
+
+
+@dataclass(frozen=True)
+class ValidityLimits:
+    """Where an answer leaves the model's validity: the limits each finding is judged against
+    (`solver.validity`). They change what is said about an answer, never its numbers.
+
+    The model is a linear, small-displacement beam whose torque is taken about the undeformed
+    elastic axis, coupled to an inviscid lattice that never stalls (the design study, 14.7).
+    Each default is where that idealisation starts to cost more than a few percent, or where a
+    real wing would behave otherwise:
+
+    heave_fraction: [-] largest |heave| / semispan (`large_deflection`). 0.1: geometrically
+        nonlinear effects become significant beyond tip deflections of about 10 % of the
+        semispan (the usual bound of linear aeroelastic analysis; e.g. Afonso et al., Prog.
+        Aerosp. Sci. 89, 2017). The linear beam keeps every station at its jig span position.
+    slope: [-] largest |du/ds| (`large_deflection`). 0.1 (5.7 deg): the beam takes sin and tan
+        of the bending slope as the slope and its cosine as 1; at 0.1 these are off by 0.2-0.5 %,
+        growing with the square of the slope (1.1 % at 0.15).
+    twist: [deg] largest |twist about the elastic axis| (`large_twist`). 10: the beam's torsion
+        is linear and uncoupled from bending about axes that stay put; a section twisted by
+        phi turns its principal axes by phi (sin 10 deg = 0.17 of the chordwise bending
+        couples into flap) and cos phi = 1 is off by 1.5 %.
+    cl_max: [-] the sections' maximum lift coefficient where the wing gives none (`wing.cl_max`),
+        for `section_stall`. 1.2: thin sections (NACA 0006 to 0012) reach cl_max 0.9 to 1.6
+        with thickness and Reynolds number (Abbott and von Doenhoff, Theory of Wing Sections);
+        1.2 is a middle value at the Reynolds numbers of small wings (1e5 to 1e6).
+    divergence_margin: [-] the stability margin q / lambda beyond which the answer is reported
+        `near_divergence`. 0.5: with one torsion mode the lift goes as 1 / (1 - q / q_div), so a
+        relative error in the torsional stiffness, the lift slope or q comes out amplified by
+        m / (1 - m) in the lift: more than one for one past m = 0.5.
+    """
+
+    heave_fraction: float = _limit(
+        0.1,
+        "-",
+        "largest |heave| over the semispan (large_deflection); default 0.1: geometrically "
+        "nonlinear effects become significant beyond tip deflections of about 10 % of the "
+        "semispan, the usual bound of linear aeroelastic analysis",
+    )
+    slope: float = _limit(
+        0.1,
+        "-",
+        "largest |bending slope du/ds| (large_deflection); default 0.1 (5.7 deg): the linear "
+        "beam takes sin and tan of the slope as the slope and its cosine as 1, off by 0.2 to "
+        "0.5 % at 0.1 and growing with its square",
+    )
+    twist: float = _limit(
+        10.0,
+        "deg",
+        "largest |twist about the elastic axis| (large_twist); default 10: the beam's torsion is "
+        "linear and uncoupled from bending about axes that stay put, while a twisted section "
+        "turns its principal axes (sin 10 deg = 0.17) and cos 10 deg = 1 is off by 1.5 %",
+    )
+    cl_max: float = _limit(
+        1.2,
+        "-",
+        "the sections' maximum lift coefficient where the wing gives none (wing.cl_max), for "
+        "section_stall; default 1.2: thin sections (NACA 0006 to 0012) reach 0.9 to 1.6 with "
+        "thickness and Reynolds number (Abbott and von Doenhoff), 1.2 is a middle value for "
+        "small wings (Reynolds numbers 1e5 to 1e6)",
+    )
+    divergence_margin: float = _limit(
+        0.5,
+        "-",
+        "stability margin q / lambda beyond which the answer is near_divergence; default 0.5: "
+        "with one torsion mode the lift goes as 1 / (1 - m), so a relative error in the "
+        "torsional stiffness, lift slope or q is amplified by m / (1 - m) in the lift, more than "
+        "one for one past m = 0.5",
+    )
+
+    def __post_init__(self) -> None:
+        for name in ("heave_fraction", "slope", "twist", "cl_max"):
+            value = getattr(self, name)
+            if not (_is_number(value) and math.isfinite(value) and value > 0):
+                raise InvalidInput(f"validity.{name}", "must be a positive, finite number")
+        margin = self.divergence_margin
+        if not (_is_number(margin) and 0 < margin <= 1):
+            raise InvalidInput("validity.divergence_margin", "must be a number in (0, 1]")
+
+
 @dataclass(frozen=True)
 class SolverOptions:
     """How to model and how to solve.
@@ -364,6 +463,8 @@ class SolverOptions:
     torque_axis: "undeformed" (the study's: torque about the undeformed elastic axis) or
         "deformed" (arms from the heaved elastic-axis point).
     safety_factor: [-] 1 to 10, what a spar's failure margin asks of it (`Totals`).
+    validity: the limits the answer's validity is judged against (`ValidityLimits`); they
+        change what is said about the answer, never its numbers.
     """
 
     tolerance: float = 1e-10
@@ -372,6 +473,7 @@ class SolverOptions:
     chordwise_panels: int = 1
     torque_axis: Literal["undeformed", "deformed"] = "undeformed"
     safety_factor: float = 1.0
+    validity: ValidityLimits = field(default_factory=ValidityLimits)
 
     def __post_init__(self) -> None:
         if not (_is_number(self.tolerance) and 0 < self.tolerance < 1):
@@ -387,3 +489,5 @@ class SolverOptions:
             raise InvalidInput("torque_axis", "must be 'undeformed' or 'deformed'")
         if not (_is_number(self.safety_factor) and 1 <= self.safety_factor <= 10):
             raise InvalidInput("safety_factor", "must be a number from 1 to 10")
+        if not isinstance(self.validity, ValidityLimits):
+            raise InvalidInput("validity", "must be a solver.ValidityLimits")

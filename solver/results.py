@@ -23,6 +23,12 @@ from solver.inputs import FlightCondition, SolverOptions, Wing
 __all__ = [
     "DivergenceSummary",
     "Equilibrium",
+    "FINDING_CODES",
+    "Finding",
+    "FindingCode",
+    "FindingMeasure",
+    "FindingOnset",
+    "FindingWhere",
     "FitDivergence",
     "Fold",
     "LinearDivergence",
@@ -250,6 +256,84 @@ class Fold:
     )
 
 
+# What each finding of `Equilibrium.validity` means (`solver.validity` finds them).
+FindingCode = Literal["large_deflection", "large_twist", "section_stall", "near_divergence"]
+FINDING_CODES: dict[FindingCode, str] = {
+    "large_deflection": (
+        "the heave (over the semispan) or the bending slope exceeds its limit: the beam is "
+        "linear, for small displacements, and keeps each station at its jig span position"
+    ),
+    "large_twist": (
+        "the twist about the elastic axis exceeds its limit: the beam's torsion is linear, with "
+        "small-angle kinematics and the torque about the undeformed elastic axis"
+    ),
+    "section_stall": (
+        "a strip's section lift coefficient exceeds its airfoil's maximum (wing.cl_max, or "
+        "options.validity.cl_max): the inviscid lattice never stalls, a real wing does there, "
+        "and carries less lift and less nose-up torque than the answer says"
+    ),
+    "near_divergence": (
+        "the stability margin q / lambda exceeds its limit: close to divergence the answer is "
+        "sensitive to every input; `sensitivity` says how much, as d(lift)/d(q) at fixed alpha "
+        "over the rigid wing's"
+    ),
+}
+FindingMeasure = Literal["heave_fraction", "slope", "twist", "section_cl", "margin"]
+FindingWhere = Literal["stations", "panels", "wing"]
+_CODES = "; ".join(f"{code}: {meaning}" for code, meaning in FINDING_CODES.items())
+
+
+@dataclass(frozen=True, eq=False)
+class Finding:
+    """Where this answer leaves the model's validity: one finding, its numbers against its limit.
+
+    The answer's numbers are the model's either way; a finding says what they are worth."""
+
+    code: FindingCode = quantity("", f"what was found. {_CODES}")
+    message: str = quantity("", "the finding in a sentence, for a person")
+    measure: FindingMeasure = quantity(
+        "",
+        "the quantity judged: heave_fraction (|heave| / semispan at a station), slope "
+        "(|du/ds| at a station), twist (|twist about the elastic axis| at a station, deg), "
+        "section_cl (a strip's lift per unit span over q and its mean chord), margin (q / lambda "
+        "of the whole wing)",
+    )
+    where: FindingWhere = quantity(
+        "",
+        "what `indices` count: stations (the arrays of `stations`), panels (the strips of "
+        "`panels`), or the wing as a whole (no indices)",
+    )
+    indices: list[int] = quantity(
+        "-", "the stations or strips concerned, root to tip (0 is the root station or strip)"
+    )
+    y: list[float] = quantity("m", "their spanwise positions (stations.y or panels.y)")
+    value: float = quantity(
+        "", "the worst value of the measure (the one furthest past its limit), in `unit`"
+    )
+    limit: float = quantity("", "the limit it is judged against there, in `unit`")
+    unit: str = quantity("", "the unit of value and limit ('-' for none)")
+    sensitivity: float | None = quantity(
+        "-",
+        "for near_divergence (else null): d(lift)/d(q) at fixed alpha over the rigid wing's "
+        "L_rigid / q, from the equilibrium's tangent dx/dq = -J^-1 r1 (1 for a rigid wing; "
+        "about 1 / (1 - margin)^2 for one torsion mode); null where the rigid wing carries no "
+        "lift",
+        default=None,
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class FindingOnset:
+    """From which airspeed on a sweep's equilibria carry a finding."""
+
+    code: FindingCode = quantity("", "what was found (see Finding.code)")
+    velocity: float = quantity("m/s", "the lowest airspeed of the sweep whose equilibrium has it")
+    velocities: list[float] = quantity(
+        "m/s", "every airspeed of the sweep whose equilibrium has it, ascending"
+    )
+    message: str = quantity("", "the onset in a sentence, for a person")
+
+
 @dataclass(frozen=True, eq=False)
 class Equilibrium:
     """A converged, statically judged equilibrium of one wing at one flight condition."""
@@ -266,6 +350,13 @@ class Equilibrium:
     solver: SolveInfo = quantity("", "how the answer was obtained")
     fold: Fold | None = quantity(
         "", "the fold of the branch from the jig, when options.find_fold asked", default=None
+    )
+    validity: list[Finding] = quantity(
+        "",
+        "where this answer leaves the model's validity (large deflections, large twist, "
+        "sections past stall, near divergence), judged against options.validity; an empty list "
+        "when nothing is found. Never changes a number of the answer",
+        default_factory=list,
     )
 
     # Shorthands for Python users; the data lives in the groups above.
@@ -364,6 +455,12 @@ class SweepResult:
     points: list[SweepPoint] = quantity("", "one per requested airspeed, in request order")
     divergence: DivergenceSummary = quantity("", "three torsional-divergence estimates")
     solver: SweepInfo = quantity("", "how the answer was obtained")
+    validity: list[FindingOnset] = quantity(
+        "",
+        "from which airspeed on each finding of the points' `validity` appears, one entry per "
+        "code found, in the order of FINDING_CODES; empty when no point has any",
+        default_factory=list,
+    )
 
     @property
     def equilibria(self) -> list[Equilibrium]:

@@ -23,6 +23,7 @@ from solver.results import (
 )
 from solver.solve import numerical_failures_as, solve
 from solver.system import CoupledSystem
+from solver.validity import onsets
 
 __all__ = ["sweep"]
 
@@ -74,7 +75,9 @@ def sweep(
         fit=fit_divergence(stable),
         fold=found,
     )
-    return SweepResult(points, divergence, SweepInfo(time.perf_counter() - started))
+    return SweepResult(
+        points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)
+    )
 
 
 def _failed(velocity: float, error: SolverError) -> SweepPoint:

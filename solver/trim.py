@@ -58,6 +58,7 @@ from solver.results import (
 )
 from solver.solve import numerical_failures_as
 from solver.system import CoupledSystem
+from solver.validity import onsets
 
 __all__ = [
     "MAX_TRIM_ALPHA",
@@ -427,7 +428,9 @@ def trim_sweep(
         fit=fit_divergence(stable, "lift_effectiveness"),
         fold=trimmed_divergence_limit(wing, lift, density, options),
     )
-    return SweepResult(points, divergence, SweepInfo(time.perf_counter() - started))
+    return SweepResult(
+        points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)
+    )
 
 
 def _failed(velocity: float, error: SolverError) -> SweepPoint:

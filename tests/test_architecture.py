@@ -29,7 +29,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["system"],
     ["loads"],
     ["jig"],
-    ["branch"],
+    ["branch", "validity"],
     ["equilibrium"],
     ["divergence", "recovery"],
     ["solve"],
