@@ -25,6 +25,7 @@ from solver import (
     SparDesign,
     ThicknessFraction,
     TrimCondition,
+    ValidityLimits,
     Wing,
 )
 
@@ -56,6 +57,7 @@ _OPTION_NAMES = {f.name for f in dataclasses.fields(SolverOptions)}
 
 def solver_options(model: schemas.SolverOptions | None) -> SolverOptions:
     values = (model or schemas.SolverOptions()).model_dump()
+    values["validity"] = ValidityLimits(**values["validity"])
     return SolverOptions(**{k: v for k, v in values.items() if k in _OPTION_NAMES})
 
 
@@ -97,6 +99,7 @@ def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> 
             jig_twist=model.jig_twist,
             airfoil=_airfoil(model.airfoil),
             spar=None if model.spar is None else _spar(model.spar),
+            cl_max=model.cl_max,
         )
     except InvalidInput as error:
         errors.append(FieldError(f"wing.{error.field}", error.reason))

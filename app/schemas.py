@@ -17,11 +17,13 @@ The response models are derived from the solver's result types (`app.results`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Annotated, Any, Literal, NamedTuple, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
 
+import solver
 from app.results import SolveResponse, SweepResponse
 from app.settings import MAX_ARRAY_LENGTH
 from solver import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
@@ -52,6 +54,7 @@ __all__ = [
     "ThicknessFraction",
     "TubeSpar",
     "SweepResponse",
+    "ValidityLimits",
     "VelocityRange",
     "Wing",
     "study_wing",
@@ -190,6 +193,11 @@ LIMITS: dict[str, Limit] = {
     "material_density": Limit(1.0, 25000.0, "kg/m^3", "foam to osmium"),
     "yield_stress": Limit(1e3, 1e11, "Pa", "foam to the strongest fibres"),
     "safety_factor": Limit(1.0, 10.0, "-", "none to very conservative"),
+    "cl_max": Limit(0.1, 10.0, "-", "a stalled flat plate's to past any high-lift system's"),
+    "heave_fraction": Limit(1e-4, 10.0, "-", "a hair's breadth to ten semispans"),
+    "validity_slope": Limit(1e-4, 10.0, "-", "from 0.006 deg to 84 deg"),
+    "validity_twist": Limit(0.01, 180.0, "deg", "a hundredth of a degree to a half turn"),
+    "divergence_margin": Limit(0.01, 1.0, "-", "1: only at divergence itself"),
 }
 
 
@@ -230,6 +238,7 @@ VelocityNumber = Annotated[float, _range("velocity")]
 JigTwistNumber = Annotated[float, _range("jig_twist")]
 CamberXNumber = Annotated[float, _range("camber_x")]
 CamberNumber = Annotated[float, _range("camber")]
+ClMaxNumber = Annotated[float, _range("cl_max")]
 HeaveNumber = Annotated[float, _range("heave")]
 SlopeNumber = Annotated[float, _range("slope")]
 TwistNumber = Annotated[float, _range("twist")]
@@ -437,6 +446,14 @@ class Wing(_Model):
             "sections). With one chordwise panel only the camber at x = 0 and 1 matters."
         ),
     )
+    cl_max: StationValues[ClMaxNumber] | None = _described(
+        "cl_max",
+        "the sections' maximum lift coefficient, past which a section stalls (the finding "
+        "section_stall; the answer's numbers do not depend on it); null: "
+        "options.validity.cl_max,",
+        default=None,
+        examples=[1.4],
+    )
 
 
 def _velocity() -> Any:
@@ -565,6 +582,36 @@ SweepFlight = Annotated[
 ]
 
 
+_VALIDITY_FIELDS = {f.name: f for f in dataclasses.fields(solver.ValidityLimits)}
+
+
+def _validity_limit(name: str, limit: str) -> Any:
+    """A field of `ValidityLimits`: the solver's default and its reason, within LIMITS[limit]."""
+    known = _VALIDITY_FIELDS[name]
+    bounds = LIMITS[limit]
+    text = str(known.metadata["description"])
+    return Field(
+        default=known.default,
+        ge=bounds.minimum,
+        le=bounds.maximum,
+        allow_inf_nan=False,
+        description=f"[{bounds.unit}] {text[:1].upper()}{text[1:]}. {bounds.minimum:g} to "
+        f"{bounds.maximum:g} ({bounds.why}).",
+    )
+
+
+class ValidityLimits(_Model):
+    """Where an answer leaves the model's validity (the response's `validity`): the limits each
+    finding is judged against, with the reason of each default. They change what is said about
+    an answer, never its numbers."""
+
+    heave_fraction: float = _validity_limit("heave_fraction", "heave_fraction")
+    slope: float = _validity_limit("slope", "validity_slope")
+    twist: float = _validity_limit("twist", "validity_twist")
+    cl_max: float = _validity_limit("cl_max", "cl_max")
+    divergence_margin: float = _validity_limit("divergence_margin", "divergence_margin")
+
+
 class SolverOptions(_Model):
     """How to solve; the defaults suit almost every wing."""
 
@@ -609,6 +656,13 @@ class SolverOptions(_Model):
             "Axis of the torque the structure carries: 'undeformed' (the design study's, and "
             "AeroSandbox-comparable) or 'deformed' (arms from the heaved elastic-axis point, as "
             "codes that load the deformed beam do)."
+        ),
+    )
+    validity: ValidityLimits = Field(
+        default_factory=ValidityLimits,
+        description=(
+            "The limits of the findings in the response's `validity` (large deflection, large "
+            "twist, section stall, near divergence); each default is documented with its reason."
         ),
     )
 
