@@ -259,6 +259,61 @@ def test_a_sweep_draws_the_amplification_curve_and_marks_the_fold(
     assert tab.errors == []
 
 
+def test_findings_show_next_to_the_figures_they_concern(visit: Callable[..., Visit]) -> None:
+    """Issue 15: at 10 m/s the study's wing is within the model; at 20 m/s its sections are
+    past stall (marked on the lift chart, said under Figure 14.2), its twist and slope too
+    large, and it is near divergence (said beside the totals); the sweep says from which
+    airspeed on, under Figure 14.4."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    assert page.get_attribute("#validity", "data-state") == "clear"
+    assert "Within the model's validity" in page.inner_text("#validity-summary")
+    assert page.locator("#findings-14-2 li").count() == 0
+    assert tab.figure("14.2")["findings"] == []
+    # The preloaded sweep (4 to 22 m/s): stall from 18 m/s on, the rest from 20.
+    onsets = page.locator("#fig-14-4 #findings-14-4 li")
+    assert [onsets.nth(i).get_attribute("data-code") for i in range(onsets.count())] == [
+        "large_deflection",
+        "large_twist",
+        "section_stall",
+        "near_divergence",
+    ]
+    assert "from 18 m/s on" in page.inner_text('#findings-14-4 li[data-code="section_stall"]')
+    assert {o["code"]: o["velocity"] for o in tab.figure("14.4")["onsets"]}["section_stall"] == 18
+    rows = page.locator("#sweep-table tbody tr")
+    assert rows.nth(7).locator("td").last.inner_text() == "stall"  # 18 m/s
+    assert rows.nth(0).locator("td").last.inner_text() == "-"  # 4 m/s
+
+    page.fill("#f-velocity", "20")
+    before = tab.runs()
+    page.press("#f-velocity", "Enter")
+    tab.wait_runs("solve", before)
+    stall = page.locator('#fig-14-2 #findings-14-2 li[data-code="section_stall"]')
+    assert stall.is_visible()
+    assert "1.70" in stall.inner_text() and "1.20" in stall.inner_text()
+    for code in ("large_deflection", "large_twist"):
+        assert page.locator(f'#findings-14-2 li[data-code="{code}"]').is_visible()
+    near = page.locator('#findings-totals li[data-code="near_divergence"]')
+    assert near.is_visible() and "times the rigid wing's" in near.inner_text()
+    assert page.get_attribute("#validity", "data-state") == "findings"
+    assert "Beyond the model's validity" in page.inner_text("#validity-summary")
+    spanwise = tab.figure("14.2")
+    assert spanwise["findings"] == [
+        "large_deflection",
+        "large_twist",
+        "section_stall",
+        "near_divergence",
+    ]
+    # The stalled strips (15 to 28) are marked on the lift chart, at their lift.
+    lift = spanwise["series"]["lift_flexible"]
+    assert spanwise["series"]["beyond_lift"]["x"] == lift["x"][15:29]
+    assert spanwise["series"]["beyond_lift"]["y"] == lift["y"][15:29]
+    assert len(spanwise["series"]["beyond_twist"]["x"]) > 0
+    assert "Beyond the model's validity" in page.inner_text("#shape-note")
+    assert tab.errors == []
+
+
 def test_a_negative_chord_is_reported_next_to_its_cell(visit: Callable[..., Visit]) -> None:
     tab = visit("/")
     tab.ready()

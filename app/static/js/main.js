@@ -394,8 +394,53 @@ function renderSolve() {
   $("rigid-note").textContent = rigidNote;
   figures.drawSpanwise(response, rigid);
   figures.drawLoads(response);
+  renderValidity(response);
   updateShapeChoices("solve");
   for (const id of ["download-json", "download-stations", "download-panels"]) $(id).disabled = false;
+}
+
+// ---------------------------------------------------------------------------------- validity
+
+// Findings about the spanwise figure's quantities are listed under it (their stations marked on
+// its charts); the others (near divergence) next to the totals, beside the stability margin.
+const SPANWISE_FINDINGS = new Set(["large_deflection", "large_twist", "section_stall"]);
+const SHORT_FINDINGS = { large_deflection: "deflection", large_twist: "twist", section_stall: "stall", near_divergence: "near divergence" };
+
+const titleOf = (code) => figures.FINDING_TITLES[code] ?? code.replaceAll("_", " ");
+const codesOf = (findings) => [...new Set(findings.map((f) => f.code))];
+
+function findingItem(finding) {
+  const item = document.createElement("li");
+  item.dataset.code = finding.code;
+  if (finding.measure) item.dataset.measure = finding.measure;
+  const title = document.createElement("strong");
+  title.textContent = `${titleOf(finding.code)}.`;
+  item.append(title, finding.message);
+  return item;
+}
+
+function renderValidity(response) {
+  const findings = response.validity ?? [];
+  const spanwise = findings.filter((f) => SPANWISE_FINDINGS.has(f.code));
+  $("findings-14-2").replaceChildren(...spanwise.map(findingItem));
+  $("findings-totals").replaceChildren(...findings.filter((f) => !SPANWISE_FINDINGS.has(f.code)).map(findingItem));
+  $("validity").dataset.state = findings.length ? "findings" : "clear";
+  $("validity-summary").textContent = findings.length
+    ? `Beyond the model's validity: ${codesOf(findings).map(titleOf).join(", ").toLowerCase()}` +
+      (spanwise.length ? " (stations marked in Figure 14.2, details under it)." : ".")
+    : "Within the model's validity: deflection, twist, section lift coefficients and stability margin are all within their limits.";
+}
+
+function renderOnsets(response) {
+  $("findings-14-4").replaceChildren(
+    ...(response.validity ?? []).map((onset) => {
+      const item = document.createElement("li");
+      item.dataset.code = onset.code;
+      item.dataset.velocity = String(onset.velocity);
+      item.textContent = onset.message;
+      return item;
+    }),
+  );
 }
 
 // ------------------------------------------------------------------------------------- sweep
@@ -438,6 +483,7 @@ const SWEEP_COLUMNS = [
   ["tip twist [deg]", (p) => signed(p.equilibrium?.totals.tip_twist, 2)],
   ["tip heave [m]", (p) => f(p.equilibrium?.totals.tip_heave, 3)],
   ["margin", (p) => f(p.equilibrium?.stability.margin, 3)],
+  ["beyond the model", (p) => (p.equilibrium ? codesOf(p.equilibrium.validity ?? []).map((c) => SHORT_FINDINGS[c] ?? c).join(", ") || "-" : "")],
 ];
 
 function renderSweep() {
@@ -470,7 +516,13 @@ function renderSweep() {
     row.dataset.status = point.status;
     for (const [, format] of SWEEP_COLUMNS) row.insertCell().textContent = format(point);
     if (point.no_equilibrium) row.title = point.no_equilibrium.reason;
+    const findings = point.equilibrium?.validity ?? [];
+    if (findings.length) {
+      row.cells[row.cells.length - 1].classList.add("beyond");
+      row.cells[row.cells.length - 1].title = findings.map((x) => x.message).join("\n");
+    }
   }
+  renderOnsets(response);
   const fastest = response.points.findLastIndex((p) => p.status === "equilibrium");
   updateShapeChoices(fastest >= 0 ? `sweep-${fastest}` : undefined);
   $("download-sweep").disabled = false;
@@ -519,9 +571,11 @@ function drawShape() {
   const scale = Number.isFinite(raw) && raw > 0 ? raw : 1;
   figures.drawShape(choice.wing, choice.equilibrium, `${f(choice.velocity, 2)} m/s`, scale);
   const t = choice.equilibrium.totals;
+  const beyondModel = codesOf(choice.equilibrium.validity ?? []);
   $("shape-note").textContent =
     `At ${f(choice.velocity, 2)} m/s: tip twist ${signed(t.tip_twist, 2)} deg, tip heave ${f(t.tip_heave, 3)} m` +
-    (scale === 1 ? " (true scale)." : `, drawn ${scale} times larger.`);
+    (scale === 1 ? " (true scale)." : `, drawn ${scale} times larger.`) +
+    (beyondModel.length ? ` Beyond the model's validity: ${beyondModel.map(titleOf).join(", ").toLowerCase()}.` : "");
 }
 
 // --------------------------------------------------------------------------------- downloads
@@ -581,6 +635,7 @@ function downloadSweep() {
     ["tip_heave [m]", total("tip_heave")],
     ["root_bending_moment [N m]", total("root_bending_moment")],
     ["margin [-]", points.map((p) => p.equilibrium?.stability.margin ?? null)],
+    ["validity", points.map((p) => (p.equilibrium ? codesOf(p.equilibrium.validity ?? []).join(" ") : null))],
     ["reason", points.map((p) => p.no_equilibrium?.reason ?? null)],
   ];
   downloadText("flexwing-sweep.csv", "text/csv", toCSV(columns));

@@ -114,7 +114,9 @@ export class StationTable {
     for (const column of this.columns) {
       const values = [];
       for (let i = 0; i < this.rows; i++) {
-        const text = this.table.querySelector(`#cell-${column.key}-${i}`).value.trim();
+        // A column just added (addColumn) has no cells yet: its default stands in.
+        const cell = this.table.querySelector(`#cell-${column.key}-${i}`);
+        const text = cell ? cell.value.trim() : String(column.value ?? "");
         const value = text === "" ? null : Number(text);
         values.push(Number.isFinite(value) ? value : null);
       }
