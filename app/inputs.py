@@ -17,6 +17,7 @@ from app.problems import FieldError, Problem
 from app.schemas import LIMITS
 from app.settings import Settings
 from solver import (
+    DesignProblem,
     FlightCondition,
     InvalidInput,
     Layout,
@@ -29,7 +30,15 @@ from solver import (
     Wing,
 )
 
-__all__ = ["SolveInput", "SweepInput", "solve_input", "solver_options", "sweep_input"]
+__all__ = [
+    "OptimizeInput",
+    "SolveInput",
+    "SweepInput",
+    "optimize_input",
+    "solve_input",
+    "solver_options",
+    "sweep_input",
+]
 
 
 @dataclass(frozen=True)
@@ -234,3 +243,61 @@ def sweep_input(request: schemas.SweepRequest, settings: Settings) -> SweepInput
     return SweepInput(
         wing, tuple(velocities), alpha, _lift(f), f.density, solver_options(request.options)
     )
+
+
+@dataclass(frozen=True)
+class OptimizeInput:
+    wing: Wing
+    problem: DesignProblem
+    options: SolverOptions
+
+
+# solver.DesignProblem's fields -> where the request gives them.
+_DESIGN_FIELDS = {
+    "lift": "flight.lift",
+    "velocity": "flight.velocity",
+    "density": "flight.density",
+    "alpha": "flight.alpha",
+    "control_points": "design.jig_twist.control_points",
+    "twist_bounds": "design.jig_twist",
+    "wall_thickness_bounds": "design.wall_thickness",
+    "size_spar": "design.wall_thickness",
+    "objective": "objective",
+    "smoothness_weight": "smoothness_weight",
+    "max_tip_heave": "constraints.max_tip_heave",
+    "max_stability_margin": "constraints.max_stability_margin",
+}
+
+
+def optimize_input(request: schemas.OptimizeRequest, settings: Settings) -> OptimizeInput:
+    errors: list[FieldError] = []
+    wing = _wing(request.wing, settings, errors)
+    f, design = request.flight, request.design
+    lift = f.lift if isinstance(f, schemas.OptimizeFlightAtLift) else f.load_factor * f.weight
+    walls = design.wall_thickness
+    problem = None
+    try:
+        problem = DesignProblem(
+            lift=lift,
+            velocity=f.velocity,
+            density=f.density,
+            alpha=f.alpha,
+            control_points=design.jig_twist.control_points,
+            objective=request.objective,
+            smoothness_weight=request.smoothness_weight,
+            twist_bounds=(design.jig_twist.lower, design.jig_twist.upper),
+            size_spar=walls is not None,
+            wall_thickness_bounds=(walls.lower, walls.upper) if walls else (5e-4, 0.05),
+            max_tip_heave=request.constraints.max_tip_heave,
+            max_stability_margin=request.constraints.max_stability_margin,
+        )
+    except InvalidInput as error:
+        field = _DESIGN_FIELDS.get(error.field, error.field)
+        if error.field == "lift" and isinstance(f, schemas.OptimizeFlightAtWeight):
+            field = "flight.load_factor"
+        errors.append(FieldError(field, error.reason))
+    if walls is not None and wing is not None and wing.spar is None:
+        errors.append(FieldError("design.wall_thickness", "the wing has no spar to size"))
+    if errors or wing is None or problem is None:
+        raise Problem.invalid(errors)
+    return OptimizeInput(wing, problem, solver_options(request.options))

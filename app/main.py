@@ -20,7 +20,7 @@ from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.pool import WorkerPool
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import health, page, solve, sweep
+from app.routes import health, optimize, page, solve, sweep
 from app.routes import jobs as job_routes
 from app.service import Service
 from app.settings import Settings, get_settings
@@ -177,6 +177,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.service = service
     install_handlers(app)
     app.include_router(solve.router)
+    app.include_router(optimize.router)
     # Prefer: respond-async turns a /sweep call into a job (202 + Location).
     async_sweep = Depends(job_routes.respond_async("sweep"))
     app.include_router(sweep.router, dependencies=[async_sweep], responses=job_routes.ACCEPTED)

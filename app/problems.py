@@ -70,6 +70,14 @@ PROBLEM_TYPES = _types(
         "`reason`). Try an initial guess, more iterations, or a lower airspeed.",
     ),
     ProblemType(
+        "infeasible-design",
+        "No feasible optimum",
+        422,
+        "The design problem has no acceptable optimum: `constraint` names the constraint that "
+        "could not be met (lift, jig_twist, von_mises, tip_heave, stability_margin) or "
+        "`optimizer` when IPOPT failed otherwise. Relax it, or give the design more freedom.",
+    ),
+    ProblemType(
         "body-too-large",
         "Request body too large",
         413,
@@ -187,6 +195,9 @@ class ProblemDetails(BaseModel):
     )
     fold_velocity: float | None = Field(
         default=None, description="no-equilibrium: [m/s] where the equilibrium branch ends."
+    )
+    constraint: str | None = Field(
+        default=None, description="infeasible-design: the constraint that could not be met."
     )
 
 

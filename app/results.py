@@ -21,7 +21,16 @@ from pydantic import BaseModel, ConfigDict, Field, create_model
 
 import solver
 
-__all__ = ["API_ONLY_FIELDS", "MODEL_NAMES", "api_fields", "payload", "response_model"]
+__all__ = [
+    "API_ONLY_FIELDS",
+    "MODEL_NAMES",
+    "OptimizeResponse",
+    "SolveResponse",
+    "SweepResponse",
+    "api_fields",
+    "payload",
+    "response_model",
+]
 
 # Response model names that differ from the solver's class names (stable OpenAPI components).
 MODEL_NAMES = {
@@ -30,6 +39,7 @@ MODEL_NAMES = {
     "SolveInfo": "SolverInfo",
     "DivergenceSummary": "Divergence",
     "PointFailure": "NoEquilibrium",
+    "OptimalDesign": "OptimizeResponse",
 }
 
 # Fields the service adds to a solver type: name -> (type, default, description).
@@ -118,3 +128,4 @@ def payload(result: Any) -> Any:
 # Build the two top-level models at import: every nested one follows.
 SolveResponse = response_model(solver.Equilibrium)
 SweepResponse = response_model(solver.SweepResult)
+OptimizeResponse = response_model(solver.OptimalDesign)

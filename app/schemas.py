@@ -24,7 +24,7 @@ from typing import Annotated, Any, Literal, NamedTuple, TypeVar
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
 
 import solver
-from app.results import SolveResponse, SweepResponse
+from app.results import OptimizeResponse, SolveResponse, SweepResponse
 from app.settings import MAX_ARRAY_LENGTH
 from solver import ISA_SEA_LEVEL_DENSITY, MIN_STATIONS
 
@@ -41,6 +41,14 @@ __all__ = [
     "HealthResponse",
     "InitialGuess",
     "ReadyResponse",
+    "OPTIMIZE_EXAMPLES",
+    "Design",
+    "DesignConstraints",
+    "OptimizeFlight",
+    "OptimizeFlightAtLift",
+    "OptimizeFlightAtWeight",
+    "OptimizeRequest",
+    "OptimizeResponse",
     "SolveRequest",
     "SolveResponse",
     "SolverOptions",
@@ -53,6 +61,8 @@ __all__ = [
     "SweepRequest",
     "ThicknessFraction",
     "TubeSpar",
+    "TwistDesign",
+    "WallDesign",
     "SweepResponse",
     "ValidityLimits",
     "VelocityRange",
@@ -89,6 +99,12 @@ _STUDY_SWEEP_REQUEST: dict[str, Any] = {
     "wing": _STUDY_WING,
     "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
     "velocities": _STUDY_SWEEP,
+}
+_STUDY_OPTIMIZE: dict[str, Any] = {
+    "wing": _STUDY_WING,
+    "flight": {"velocity": 12.0, "weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "design": {"jig_twist": {"control_points": 6}},
+    "objective": "induced_drag",
 }
 # Request-body examples for the OpenAPI document (what /docs pre-fills).
 SOLVE_EXAMPLES: dict[str, Any] = {
@@ -198,6 +214,10 @@ LIMITS: dict[str, Limit] = {
     "validity_slope": Limit(1e-4, 10.0, "-", "from 0.006 deg to 84 deg"),
     "validity_twist": Limit(0.01, 180.0, "deg", "a hundredth of a degree to a half turn"),
     "divergence_margin": Limit(0.01, 1.0, "-", "1: only at divergence itself"),
+    "smoothness_weight": Limit(0.0, 1e3, "N/deg^2", "none to a twist held straight"),
+    "design_twist": Limit(-45.0, 45.0, "deg", "a built-in twist the lattice can mean, and more"),
+    "tip_heave_limit": Limit(1e-6, 1e3, "m", "a micrometre to a kilometre"),
+    "stability_limit": Limit(0.01, 0.999, "-", "q / divergence pressure below 1: stable"),
 }
 
 
@@ -756,6 +776,142 @@ class SweepRequest(_Model):
     )
     options: SolverOptions | None = Field(default=None, description="Optional solver options.")
 
+
+def _design_alpha() -> Any:
+    return _ranged(
+        "alpha",
+        "angle of attack of the jig, fixed (the twist does the trimming),",
+        default=0.0,
+        examples=[0.0],
+    )
+
+
+class OptimizeFlightAtLift(_Model):
+    """The flight the design is for: `lift` at `velocity`, at a fixed jig angle `alpha`."""
+
+    velocity: float = _velocity()
+    lift: float = _ranged("lift", "lift of both halves to carry, positive,", examples=[300.0])
+    alpha: float = _design_alpha()
+    density: float = _density()
+
+
+class OptimizeFlightAtWeight(_Model):
+    """The flight the design is for: `load_factor * weight` at `velocity`, at a fixed `alpha`."""
+
+    velocity: float = _velocity()
+    weight: float = _weight()
+    load_factor: float = _load_factor()
+    alpha: float = _design_alpha()
+    density: float = _density()
+
+
+DESIGN_FLIGHT_RULE = "give lift, or weight with an optional load_factor"
+
+
+def _design_way(value: Any) -> str | None:
+    if not isinstance(value, dict):
+        return "@lift"
+    given = [way for way in ("lift", "weight") if way in value]
+    if "load_factor" in value and "weight" not in value:
+        return None
+    return f"@{given[0]}" if len(given) == 1 else None
+
+
+OptimizeFlight = Annotated[
+    Annotated[OptimizeFlightAtLift, Tag("@lift")]
+    | Annotated[OptimizeFlightAtWeight, Tag("@weight")],
+    Discriminator(
+        _design_way, custom_error_type="flight_way", custom_error_message=DESIGN_FLIGHT_RULE
+    ),
+]
+
+
+class TwistDesign(_Model):
+    """The jig twist as design variables."""
+
+    control_points: int | None = Field(
+        default=6,
+        ge=2,
+        le=50,
+        description=(
+            "[-] k values at evenly spaced fractions of the semispan, 2 to 50, joined by a cubic "
+            "spline with zero slope at the root (smooth: the default, 6); null: every station's "
+            "jig twist is a variable (then the total twist's root slope is held at zero)."
+        ),
+    )
+    lower: float = _ranged("design_twist", "lowest jig twist at any station,", default=-15.0)
+    upper: float = _ranged("design_twist", "highest jig twist at any station,", default=15.0)
+
+
+class WallDesign(_Model):
+    """The spar's wall thickness at every station as design variables (the wing needs a spar)."""
+
+    lower: float = _ranged("wall_thickness", "thinnest wall,", default=5e-4)
+    upper: float = _ranged(
+        "wall_thickness", "thickest wall (also capped at half the outer diameter),", default=0.05
+    )
+
+
+class Design(_Model):
+    """What the optimiser may change."""
+
+    jig_twist: TwistDesign = Field(default_factory=TwistDesign)
+    wall_thickness: WallDesign | None = Field(
+        default=None, description="Size the spar's wall too (null: keep the wing's spar)."
+    )
+
+
+class DesignConstraints(_Model):
+    """Constraints beyond the lift (always held) and the twist bounds (in `design`)."""
+
+    max_tip_heave: float | None = _ranged(
+        "tip_heave_limit", "largest |tip heave| (null: none),", default=None
+    )
+    max_stability_margin: float = _ranged(
+        "stability_limit",
+        "largest q / local divergence pressure accepted at the optimum (checked there),",
+        default=0.95,
+    )
+
+
+class OptimizeRequest(_Model):
+    """A design problem: the jig twist (and spar wall) of the wing that flies."""
+
+    model_config = ConfigDict(
+        extra="forbid", strict=True, json_schema_extra={"examples": [_STUDY_OPTIMIZE]}
+    )
+
+    wing: Wing
+    flight: OptimizeFlight = Field(description=f"The design flight: {DESIGN_FLIGHT_RULE}.")
+    design: Design = Field(default_factory=Design)
+    objective: Literal["induced_drag", "trefftz_drag", "spar_mass"] = Field(
+        default="induced_drag",
+        description=(
+            "What to minimise: induced_drag (near field, of the deformed wing, as AeroSandbox), "
+            "trefftz_drag (far field: a zigzag twist cannot game it) or spar_mass (needs "
+            "design.wall_thickness)."
+        ),
+    )
+    smoothness_weight: float = _ranged(
+        "smoothness_weight",
+        "weight w of the penalty w * sum of squared second differences of the total twist,",
+        default=0.0,
+    )
+    constraints: DesignConstraints = Field(default_factory=DesignConstraints)
+    options: SolverOptions | None = Field(default=None, description="Optional solver options.")
+
+
+OPTIMIZE_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The study's closing sketch: the jig twist of its wing carrying 300 N at 12 m/s",
+        "value": _STUDY_OPTIMIZE,
+    },
+    "aerosandbox_reference": {
+        "summary": "The regularised sketch AeroSandbox solves: every station, penalty 0.01",
+        "value": _STUDY_OPTIMIZE
+        | {"design": {"jig_twist": {"control_points": None}}, "smoothness_weight": 0.01},
+    },
+}
 
 # ---------------------------------------------------------------------------------- responses
 

@@ -16,11 +16,11 @@ from typing import Any, TypeVar
 
 from app import worker
 from app.cache import ResultCache
-from app.inputs import solve_input, sweep_input
+from app.inputs import optimize_input, solve_input, sweep_input
 from app.metrics import Metrics
 from app.pool import NotReady, Overloaded, SolveTimeout, WorkerLost, WorkerPool
 from app.problems import Problem
-from app.schemas import SolveRequest, SweepRequest
+from app.schemas import OptimizeRequest, SolveRequest, SweepRequest
 from app.settings import Settings
 
 __all__ = ["Service"]
@@ -30,6 +30,10 @@ Payload = dict[str, Any]
 
 
 def _failure_problem(failure: worker.Failure) -> Problem:
+    if failure.kind == "infeasible_design":
+        return Problem(
+            "infeasible-design", failure.message, extensions={"constraint": failure.constraint}
+        )
     if failure.kind == "no_equilibrium":
         return Problem(
             "no-equilibrium",
@@ -135,5 +139,30 @@ class Service:
         )
         outcome = await self._run(worker.run_sweep, job, self.settings.sweep_timeout, "sweep")
         self.metrics.solves.labels("sweep", "completed").inc()
+        self.results.put(key, outcome.payload)
+        return outcome.payload
+
+    async def optimize(self, request: OptimizeRequest) -> Payload:
+        inputs = optimize_input(request, self.settings)
+        key = (
+            "optimize",
+            inputs.wing.key,
+            dataclasses.astuple(inputs.problem),
+            dataclasses.astuple(inputs.options),
+        )
+        hit = self._lookup(key)
+        if isinstance(hit, worker.Failure):
+            raise _failure_problem(hit)
+        if hit is not None:
+            return hit
+        job = worker.OptimizeJob(inputs.wing, inputs.problem, inputs.options)
+        timeout = self.settings.optimize_timeout
+        outcome = await self._run(worker.run_optimize, job, timeout, "optimize")
+        if outcome.failure is not None:
+            self.metrics.solves.labels("optimize", outcome.failure.kind).inc()
+            self.results.put(key, outcome.failure)
+            raise _failure_problem(outcome.failure)
+        assert outcome.payload is not None
+        self.metrics.solves.labels("optimize", "optimum").inc()
         self.results.put(key, outcome.payload)
         return outcome.payload

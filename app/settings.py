@@ -77,6 +77,9 @@ class Settings(BaseSettings):
     sweep_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /sweep in a worker."
     )
+    optimize_timeout: float = Field(
+        default=120.0, gt=0, description="[s] time budget of one /optimize in a worker."
+    )
     jobs_per_worker: int = Field(
         default=2,
         ge=1,

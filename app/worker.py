@@ -21,12 +21,15 @@ import numpy as np
 from app.results import payload
 from solver import (
     ConvergenceError,
+    DesignProblem,
     FlightCondition,
+    InfeasibleDesign,
     NoEquilibrium,
     SolverError,
     SolverOptions,
     TrimCondition,
     Wing,
+    optimize,
     solve,
     sweep,
     trim,
@@ -42,6 +45,8 @@ __all__ = [
     "SweepOutcome",
     "WarmReport",
     "initialize",
+    "OptimizeJob",
+    "run_optimize",
     "run_solve",
     "run_sweep",
     "run_timed",
@@ -75,16 +80,24 @@ class SweepJob:
 
 
 @dataclass(frozen=True)
+class OptimizeJob:
+    wing: Wing
+    problem: DesignProblem
+    options: SolverOptions
+
+
+@dataclass(frozen=True)
 class Failure:
     """A solve that ended without an equilibrium, as data (solver exceptions do not pickle)."""
 
-    kind: Literal["no_equilibrium", "not_converged"]
+    kind: Literal["no_equilibrium", "not_converged", "infeasible_design"]
     message: str
     velocity: float
     fold_velocity: float | None = None
     iterations: int | None = None
     residual_norm: float | None = None
     reason: str | None = None
+    constraint: str | None = None  # infeasible_design: which one
 
 
 @dataclass(frozen=True)
@@ -156,6 +169,8 @@ def _finite_or_none(value: float | None) -> float | None:
 
 
 def _failure(error: SolverError, velocity: float) -> Failure:
+    if isinstance(error, InfeasibleDesign):
+        return Failure("infeasible_design", str(error), velocity, constraint=error.constraint)
     if isinstance(error, NoEquilibrium):
         return Failure("no_equilibrium", str(error), velocity, fold_velocity=error.fold_velocity)
     if isinstance(error, ConvergenceError):
@@ -189,3 +204,12 @@ def run_sweep(job: SweepJob) -> SweepOutcome:
         assert job.alpha is not None
         result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
     return SweepOutcome(payload(result))
+
+
+def run_optimize(job: OptimizeJob) -> SolveOutcome:
+    """One optimal design (an OptimizeResponse as a dict), or the reason there is none."""
+    try:
+        design = optimize(job.wing, job.problem, job.options)
+    except SolverError as error:
+        return SolveOutcome(None, _failure(error, job.problem.velocity))
+    return SolveOutcome(payload(design), None)

@@ -23,7 +23,13 @@ from solver.divergence import (
     linear_divergence,
     linear_divergence_pressure,
 )
-from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, SolverError
+from solver.errors import (
+    ConvergenceError,
+    InfeasibleDesign,
+    InvalidInput,
+    NoEquilibrium,
+    SolverError,
+)
 from solver.inputs import (
     ISA_SEA_LEVEL_DENSITY,
     MIN_STATIONS,
@@ -34,8 +40,10 @@ from solver.inputs import (
     Wing,
 )
 from solver.layout import Layout
+from solver.optimize import DesignProblem, optimize, trefftz_drag
 from solver.results import (
     FINDING_CODES,
+    ConstraintValue,
     DivergenceSummary,
     Equilibrium,
     Finding,
@@ -43,8 +51,11 @@ from solver.results import (
     FitDivergence,
     Fold,
     LinearDivergence,
+    OptimalDesign,
+    OptimizerInfo,
     Panels,
     PointFailure,
+    RigidOptimum,
     SolveInfo,
     Stability,
     Stations,
@@ -64,7 +75,9 @@ __all__ = [
     "MIN_STATIONS",
     "CacheInfo",
     "FINDING_CODES",
+    "ConstraintValue",
     "ConvergenceError",
+    "DesignProblem",
     "DivergenceSummary",
     "Equilibrium",
     "Finding",
@@ -72,13 +85,17 @@ __all__ = [
     "FitDivergence",
     "FlightCondition",
     "Fold",
+    "InfeasibleDesign",
     "InvalidInput",
     "Layout",
     "LinearDivergence",
     "Material",
     "NoEquilibrium",
+    "OptimalDesign",
+    "OptimizerInfo",
     "Panels",
     "PointFailure",
+    "RigidOptimum",
     "SolveInfo",
     "SolverError",
     "SolverOptions",
@@ -101,9 +118,11 @@ __all__ = [
     "fit_divergence",
     "linear_divergence",
     "linear_divergence_pressure",
+    "optimize",
     "rigid_trim_alpha",
     "solve",
     "sweep",
+    "trefftz_drag",
     "trim",
     "trim_sweep",
     "trimmed_divergence_limit",

@@ -136,14 +136,18 @@ class CompiledModel:
         return Evaluation(r0.ravel(), r1.ravel(), j0, j1)
 
     def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
-        """`evaluate`, and what a trimmed solve adds (same evaluation, nothing recomputed)."""
-        r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha = self._calls[0](x, p)
+        """`evaluate`, and what trim and design add (same evaluation, nothing recomputed)."""
+        r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = self._calls[0](
+            x, p
+        )
         terms = AlphaTerms(
             r0_alpha.ravel(),
             r1_alpha.ravel(),
             float(lift[0, 0]),
             lift_x.ravel(),
             float(lift_alpha[0, 0]),
+            float(drag[0, 0]),
+            drag_x.ravel(),
         )
         return Evaluation(r0.ravel(), r1.ravel(), j0, j1), terms
 

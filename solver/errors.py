@@ -3,7 +3,7 @@ equilibrium raises a `SolverError`."""
 
 from __future__ import annotations
 
-__all__ = ["ConvergenceError", "InvalidInput", "NoEquilibrium", "SolverError"]
+__all__ = ["ConvergenceError", "InfeasibleDesign", "InvalidInput", "NoEquilibrium", "SolverError"]
 
 
 class InvalidInput(ValueError):
@@ -73,3 +73,18 @@ class NoEquilibrium(SolverError):
             )
         message = f"no static aeroelastic equilibrium at V = {velocity:g} m/s: {where}"
         super().__init__(message + (f" ({detail})" if detail else ""))
+
+
+class InfeasibleDesign(SolverError):
+    """A design problem without an acceptable optimum.
+
+    Attributes:
+        constraint: which constraint could not be met ("lift", "von_mises", "tip_heave",
+            "stability_margin", "jig_twist", ...) or "optimizer" when IPOPT failed otherwise.
+        detail: what was found.
+    """
+
+    def __init__(self, constraint: str, detail: str) -> None:
+        self.constraint = constraint
+        self.detail = detail
+        super().__init__(f"no feasible optimum: {constraint}: {detail}")

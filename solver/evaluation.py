@@ -35,10 +35,11 @@ class Evaluation:
 
 @dataclass(frozen=True)
 class AlphaTerms:
-    """What a trimmed solve adds at one state x, all per degree of alpha or per unit q.
+    """What trimmed flight and design add at one state x, per degree of alpha or per unit q.
 
     r0, r1: (n,) d(r0)/d(alpha), d(r1)/d(alpha); lift: [m^2] lift of both halves per unit q;
-    lift_x: (n,) its gradient in x; lift_alpha: [m^2/deg] its derivative in alpha.
+    lift_x: (n,) its gradient in x; lift_alpha: [m^2/deg] its derivative in alpha; drag: [m^2]
+    near-field induced drag of both halves per unit q; drag_x: (n,) its gradient in x.
     """
 
     r0: np.ndarray
@@ -46,3 +47,5 @@ class AlphaTerms:
     lift: float
     lift_x: np.ndarray
     lift_alpha: float
+    drag: float
+    drag_x: np.ndarray

@@ -53,7 +53,7 @@ __all__ = [
 ]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "5"
+MODEL_VERSION = "6"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -329,6 +329,13 @@ class _Symbols:
         )
         return r0, r1
 
+    def drag(self, loads: ca.MX) -> ca.MX:
+        """Near-field induced drag of both halves per unit q [m^2]: 2 sum (Fx cos + Fz sin)."""
+        m, alpha = self.m, self.alpha_deg * DEG
+        return 2 * (
+            ca.cos(alpha) * ca.sum1(loads[:m, :]) + ca.sin(alpha) * ca.sum1(loads[2 * m : 3 * m, :])
+        )
+
     def lift(self, loads: ca.MX) -> ca.MX:
         """Lift of both halves per unit q [m^2]: 2 sum (Fz cos(alpha) - Fx sin(alpha))."""
         m, alpha = self.m, self.alpha_deg * DEG
@@ -339,7 +346,8 @@ class _Symbols:
 
 def build_coupled_function(layout: Layout) -> ca.Function:
     """(x, p) -> r0, r1, J0, J1 (dense), and for trim r0_alpha, r1_alpha (per degree), lift
-    (per unit q), lift_x (1, n) and lift_alpha. See the module docstring."""
+    (per unit q), lift_x (1, n) and lift_alpha; for design the near-field drag (per unit q) and
+    drag_x (1, n). See the module docstring."""
     sym = _Symbols(layout)
     m, n, nx = sym.m, layout.n, layout.n_unknowns
     left, right, collocation, center, left_z, right_z, collocation_z, center_z = sym.lattice()
@@ -389,13 +397,27 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     lift_alpha = sym.lift(loads_a) - 2 * DEG * (
         ca.sin(alpha) * ca.sum1(loads[2 * m : 3 * m]) + ca.cos(alpha) * ca.sum1(loads[:m])
     )
-    outputs = [r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha]
+    drag = sym.drag(loads)
+    drag_x = sym.drag(loads_x)
+    outputs = [r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x]
     return ca.Function(
         f"flexwing_coupled_{_tag(layout)}",
         [sym.x, sym.p],
         [ca.densify(out) for out in outputs],
         ["x", "p"],
-        ["r0", "r1", "J0", "J1", "r0_alpha", "r1_alpha", "lift", "lift_x", "lift_alpha"],
+        [
+            "r0",
+            "r1",
+            "J0",
+            "J1",
+            "r0_alpha",
+            "r1_alpha",
+            "lift",
+            "lift_x",
+            "lift_alpha",
+            "drag",
+            "drag_x",
+        ],
     )
 
 

@@ -33,7 +33,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["equilibrium"],
     ["divergence", "recovery"],
     ["solve"],
-    ["sweep", "trim"],
+    ["sweep", "trim", "optimize"],
     ["warm"],
     ["__init__"],
 ]

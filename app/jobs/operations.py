@@ -1,6 +1,6 @@
 """What a job can run: a small registry, one `Operation` per name.
 
-Adding one (e.g. ``optimize`` once POST /optimize exists) is a few lines, before
+Adding one (as ``optimize`` below) is a few lines, before
 `app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
 
     async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
@@ -25,10 +25,17 @@ from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 from pydantic import BaseModel, Discriminator, Field, Tag, create_model
 from pydantic.json_schema import SkipJsonSchema
 
-from app.inputs import solve_input, sweep_input
+from app.inputs import optimize_input, solve_input, sweep_input
 from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem
-from app.schemas import SolveRequest, SolveResponse, SweepRequest, SweepResponse
+from app.schemas import (
+    OptimizeRequest,
+    OptimizeResponse,
+    SolveRequest,
+    SolveResponse,
+    SweepRequest,
+    SweepResponse,
+)
 from app.service import Service
 from app.settings import Settings
 
@@ -113,6 +120,15 @@ async def patiently(call: Callable[[], Awaitable[T]]) -> T:
         backoff = min(2 * backoff, _MAX_BACKOFF)
 
 
+async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
+    payload = await patiently(lambda: context.service.optimize(request))
+    return OptimizeResponse.model_validate(payload).model_dump_json()
+
+
+def _check_optimize(request: OptimizeRequest, settings: Settings) -> None:
+    optimize_input(request, settings)
+
+
 async def _run_solve(context: JobContext, request: SolveRequest) -> str:
     payload = await patiently(lambda: context.service.solve(request))
     return SolveResponse.model_validate(payload).model_dump_json()
@@ -194,6 +210,17 @@ register(
         units=_sweep_points,
         check=_check_sweep,
         run=_run_sweep,
+    )
+)
+register(
+    Operation(
+        name="optimize",
+        summary="one optimisation (POST /optimize)",
+        request_model=OptimizeRequest,
+        request_description="A POST /optimize body.",
+        units=lambda request: 1,
+        check=_check_optimize,
+        run=_run_optimize,
     )
 )
 register(

@@ -6,7 +6,7 @@ from typing import Any
 
 from app.problems import ProblemDetails
 
-__all__ = ["SOLVE_ERRORS"]
+__all__ = ["OPTIMIZE_ERRORS", "SOLVE_ERRORS"]
 
 
 def _problem(description: str) -> dict[str, Any]:
@@ -25,4 +25,13 @@ SOLVE_ERRORS: dict[int | str, dict[str, Any]] = {
         "/problems/worker-lost); see Retry-After."
     ),
     504: _problem("The solve exceeded its time budget (/problems/solve-timeout)."),
+}
+
+OPTIMIZE_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field), no feasible "
+        "optimum (/problems/infeasible-design, `constraint` names which), no equilibrium or no "
+        "convergence of the optimal wing (/problems/no-equilibrium, /problems/not-converged)."
+    ),
+    504: _problem("The optimisation exceeded its time budget (/problems/solve-timeout)."),
 }

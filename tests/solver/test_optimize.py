@@ -1,0 +1,189 @@
+"""Design (`solver.optimize`): the study's sketch made well-posed, against AeroSandbox solving the
+regularised sketch (tests/reference/data/ref_design_study.json, CONVENTIONS.md item 16), exact
+gradients, and the physics of the optimum."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+import pytest
+
+import solver
+from solver.optimize import _DesignSpace, trefftz_matrix
+from tests.reference import extended_references
+from tests.study import study_wing
+
+(DESIGN,) = [r for r in extended_references() if r.name == "design_study"]
+CARBON = solver.Material(
+    youngs_modulus=70e9, shear_modulus=27e9, density=1600.0, yield_stress=600e6
+)
+
+
+def _reference_problem() -> solver.DesignProblem:
+    task = DESIGN.case["optimize"]
+    return solver.DesignProblem(
+        lift=task["lift"],
+        velocity=task["velocity"],
+        density=DESIGN.rho,
+        alpha=task["alpha_deg"],
+        control_points=None,  # every station's jig twist, as the reference
+        smoothness_weight=task["smoothness_weight"],
+    )
+
+
+@functools.cache
+def _reference_optimum() -> solver.OptimalDesign:
+    return solver.optimize(DESIGN.wing, _reference_problem())
+
+
+@functools.cache
+def _study_optimum() -> solver.OptimalDesign:
+    return solver.optimize(study_wing(), solver.DesignProblem(lift=300.0, velocity=12.0))
+
+
+def _spar_wing(yield_stress: float = 600e6) -> solver.Wing:
+    base = study_wing()
+    material = dataclasses.replace(CARBON, yield_stress=yield_stress)
+    spar = solver.SparDesign(solver.ThicknessFraction(0.8), 0.002, material)
+    return solver.Wing.create(base.y, base.chord, 0.4, airfoil="naca0012", spar=spar)
+
+
+def test_the_flexible_optimum_matches_aerosandbox():
+    theirs = DESIGN.data["flexible"]
+    ours = _reference_optimum()
+    # IPOPT stops both at 1e-10; the drag agrees to round-off, the twist to the stopping point.
+    assert ours.objective_value == pytest.approx(theirs["objective"], rel=1e-6)
+    assert ours.induced_drag == pytest.approx(theirs["D"], rel=1e-6)
+    assert np.max(np.abs(ours.jig_twist - theirs["jig_twist_deg"])) <= 1e-4
+    assert ours.equilibrium.totals.lift == pytest.approx(theirs["L"], rel=1e-9)
+
+
+def test_the_rigid_optimum_matches_aerosandbox():
+    theirs = DESIGN.data["rigid"]
+    rigid = _reference_optimum().rigid
+    assert rigid.induced_drag == pytest.approx(theirs["D"], rel=1e-6)
+    assert np.max(np.abs(rigid.jig_twist - theirs["jig_twist_deg"])) <= 1e-4
+
+
+def test_the_trefftz_drag_of_an_elliptic_loading_is_the_classical_minimum():
+    """D = L^2 / (q pi b^2) for elliptic circulation: the far field's planar wake, converging
+    as the stations refine (midpoint downwash: 2 % low at 31 stations, 0.1 % at 481)."""
+    for stations, tolerance in ((31, 0.025), (481, 0.002)):
+        y = 5.0 * np.sin(np.linspace(0, np.pi / 2, stations))
+        middle = (y[1:] + y[:-1]) / 2
+        circulation = np.sqrt(1 - (middle / 5.0) ** 2)
+        drag = circulation @ trefftz_matrix(y) @ circulation  # per unit q
+        lift = 4 * np.sum(circulation * np.diff(y))  # per unit q, both halves
+        assert drag == pytest.approx(lift**2 / (np.pi * 10.0**2), rel=tolerance)
+
+
+def test_the_rigid_optimum_is_nearly_elliptic():
+    rigid = _study_optimum().rigid
+    # Near field on this mesh reads ~1.03 (the issue's figure); the far field nearer 1 (the
+    # residual 2 % is the midpoint downwash of 30 stations, see the test above).
+    assert rigid.span_efficiency == pytest.approx(1.03, abs=0.01)
+    assert abs(rigid.trefftz_span_efficiency - 1) < abs(rigid.span_efficiency - 1)
+    assert rigid.trefftz_span_efficiency == pytest.approx(1.0, abs=0.025)
+
+
+def test_the_flexible_jig_is_the_rigid_optimum_minus_the_aeroelastic_twist():
+    optimum = _study_optimum()
+    flying = optimum.jig_twist + optimum.equilibrium.stations.twist
+    # The flying shape is what the optimiser shapes: (nearly) the rigid optimum's jig, against
+    # an elastic twist of 1.5 deg. Six control points cannot follow the elastic twist exactly
+    # (it has a slope at the root, the spline none): 0.15 deg there, 0.02 deg elsewhere.
+    difference = np.abs(flying - optimum.rigid.jig_twist)
+    assert np.max(np.abs(optimum.equilibrium.stations.twist)) > 1.0
+    assert np.sqrt(np.mean(difference**2)) < 0.05 and np.max(difference) < 0.2
+
+
+def test_the_optimum_is_stable_and_solve_answers_the_same():
+    optimum = _study_optimum()
+    assert optimum.equilibrium.stability.stable and optimum.equilibrium.stability.branch == "jig"
+    flight = solver.FlightCondition(12.0, 0.0)
+    again = solver.solve(optimum.wing, flight)
+    assert np.array_equal(again.state, optimum.equilibrium.state)
+    rebuilt = dataclasses.replace(optimum.wing)
+    assert solver.solve(rebuilt, flight).totals.lift == pytest.approx(300.0, rel=1e-9)
+    assert optimum.optimizer.status == "Solve_Succeeded"
+
+
+def test_every_constraint_is_reported_with_its_activity():
+    optimum = _study_optimum()
+    by_name = {c.name: c for c in optimum.constraints}
+    assert set(by_name) == {"lift", "jig_twist", "stability_margin"}
+    assert by_name["lift"].active and by_name["lift"].value == pytest.approx(300.0, rel=1e-9)
+    assert not by_name["stability_margin"].active
+
+
+@pytest.mark.parametrize("rigid", [False, True], ids=["flexible", "rigid"])
+def test_reduced_gradients_are_exact(rigid: bool):
+    """Every function IPOPT sees, against central differences (step 1e-6: error ~1e-8)."""
+    wing = _spar_wing()
+    problem = solver.DesignProblem(
+        lift=600.0, velocity=14.0, size_spar=True, smoothness_weight=0.01, max_tip_heave=1.0
+    )
+    space = _DesignSpace(wing, problem, solver.SolverOptions(), rigid=rigid)
+    v = np.concatenate([np.linspace(3.0, 1.0, 6), np.full(30, 0.002)])
+    direction = np.random.default_rng(7).normal(size=v.size)
+    direction[6:] *= 1e-4  # walls in metres
+    step = 1e-6
+    point = space.at(v)
+    plus, minus = space._evaluate(v + step * direction), space._evaluate(v - step * direction)
+    for name, gradient in point.gradients.items():
+        finite = (plus.values[name] - minus.values[name]) / (2 * step)
+        exact = gradient @ direction
+        scale = max(np.max(np.abs(exact)), 1e-9)
+        assert np.max(np.abs(finite - exact)) <= 1e-5 * scale, name
+
+
+def test_the_stress_constraint_binds_at_the_root_and_a_stronger_material_saves_mass():
+    """Spar mass under 2.5 g: the walls sit on their lower bound (0.5 mm) wherever the stress
+    allows, and thicken at the root, where the bending moment is largest, when it does not."""
+    problem = solver.DesignProblem(
+        lift=750.0,
+        velocity=14.0,
+        size_spar=True,
+        objective="spar_mass",
+        wall_thickness_bounds=(5e-4, 0.01),
+    )
+    weak = solver.optimize(_spar_wing(30e6), problem)
+    strong = solver.optimize(_spar_wing(45e6), problem)
+    stress = {c.name: c for c in weak.constraints}["von_mises"]
+    assert stress.active and stress.upper == 30e6
+    assert weak.equilibrium.stations.von_mises_stress[0] == pytest.approx(30e6, rel=1e-6)
+    assert weak.wall_thickness[0] > 5e-4 and weak.wall_thickness[-1] == pytest.approx(5e-4)
+    assert strong.spar_mass < weak.spar_mass
+    assert strong.equilibrium.totals.max_von_mises_stress <= 45e6 * (1 + 1e-9)
+
+
+def test_a_lift_the_twist_bounds_cannot_reach_is_infeasible_and_says_which():
+    problem = solver.DesignProblem(lift=3000.0, velocity=12.0, twist_bounds=(-2.0, 2.0))
+    with pytest.raises(solver.InfeasibleDesign) as raised:
+        solver.optimize(study_wing(), problem)
+    assert raised.value.constraint in ("lift", "jig_twist")
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        ({"objective": "spar_mass"}, "objective"),
+        ({"lift": -1.0}, "lift"),
+        ({"control_points": 1}, "control_points"),
+        ({"twist_bounds": (5.0, -5.0)}, "twist_bounds"),
+    ],
+    ids=["mass-without-sizing", "negative-lift", "one-control-point", "inverted-bounds"],
+)
+def test_a_problem_that_cannot_be_posed_is_invalid_input(changes, field):
+    with pytest.raises(solver.InvalidInput) as raised:
+        solver.DesignProblem(**({"lift": 300.0, "velocity": 12.0} | changes))
+    assert raised.value.field == field
+
+
+def test_sizing_a_spar_the_wing_does_not_have_is_invalid_input():
+    problem = solver.DesignProblem(lift=300.0, velocity=12.0, size_spar=True)
+    with pytest.raises(solver.InvalidInput) as raised:
+        solver.optimize(study_wing(), problem)
+    assert raised.value.field == "size_spar"
