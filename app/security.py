@@ -21,9 +21,9 @@ whether it was mistyped, revoked or never issued. Routes get the request's owner
 ``Depends(principal)``.
 
 Rate limits (`app.ratelimit`) apply per key, or per client address without keys (behind a proxy,
-run uvicorn with --forwarded-allow-ips so that the address is the client's), to every path but
-the probes. Keys never reach a log: nothing here logs a header, and uvicorn's access log has the
-request line only (keys are never accepted in a URL).
+the address uvicorn takes from X-Forwarded-For when the proxy is in --forwarded-allow-ips), to
+every path but the probes. Keys never reach a log: nothing here logs a header, and uvicorn's
+access log has the request line only (keys are never accepted in a URL).
 """
 
 from __future__ import annotations
