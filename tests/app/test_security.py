@@ -17,10 +17,12 @@ refilled every 100 s) and `open_server` (no keys, the same small bucket, CORS by
 
 from __future__ import annotations
 
+import asyncio
 import base64
 import itertools
 import json
 import secrets
+import sqlite3
 import statistics
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -32,7 +34,7 @@ import pytest
 from fastapi.routing import APIRoute
 from starlette.routing import BaseRoute, Mount, Route
 
-from app.jobs.store import new_job_id
+from app.jobs.store import JobStore, list_jobs, new_job_id
 from app.keys import add_key, digest
 from app.main import create_app
 from app.settings import Settings
@@ -366,6 +368,37 @@ def test_a_listing_shows_only_ones_own_jobs(
     assert not alices_ids & bobs_ids
     assert bob.get(bobs.headers["location"]).status_code == 200
     assert alice.get(bobs.headers["location"]).status_code == 404
+
+
+# A jobs database from before API keys (its jobs table without `principal`).
+OLD_JOBS_TABLE = """
+CREATE TABLE jobs (
+    id TEXT PRIMARY KEY, operation TEXT NOT NULL, status TEXT NOT NULL, owner TEXT NOT NULL,
+    created REAL NOT NULL, started REAL, finished REAL, expires REAL,
+    done INTEGER NOT NULL DEFAULT 0, total INTEGER NOT NULL, problems INTEGER NOT NULL DEFAULT 0,
+    result TEXT, problem TEXT
+);
+INSERT INTO jobs (id, operation, status, owner, created, total)
+    VALUES ('old-job', 'solve', 'succeeded', 'gone', 1.0, 1);
+"""
+
+
+def test_jobs_from_before_keys_are_kept_and_belong_to_no_key(tmp_path: Path) -> None:
+    database = tmp_path / "jobs.sqlite3"
+    with sqlite3.connect(database) as connection:
+        connection.executescript(OLD_JOBS_TABLE)
+
+    async def listed() -> tuple[list[str], list[str]]:
+        jobs = JobStore(database)
+        await jobs.open()  # adds the column
+        try:
+            anyone = await jobs.read(list_jobs, 10, None, None, 0.0, "")
+            a_key = await jobs.read(list_jobs, 10, None, None, 0.0, digest("fw_x").hex())
+        finally:
+            await jobs.close()
+        return [row["id"] for row in anyone], [row["id"] for row in a_key]
+
+    assert asyncio.run(listed()) == (["old-job"], [])
 
 
 # --------------------------------------------------------------------------------- job ids
