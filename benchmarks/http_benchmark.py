@@ -80,6 +80,7 @@ def server(url: str | None) -> Iterator[str]:
             *("--host", "127.0.0.1", "--log-level", "warning", "--no-access-log"),
         ],
         cwd=ROOT,
+        env=os.environ | {"FLEXWING_RATE_LIMIT": "0"},  # the service, not its rate limit
     )
     base = f"http://127.0.0.1:{port}"
     try:
