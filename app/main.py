@@ -15,7 +15,7 @@ from fastapi import Depends, FastAPI
 from fastapi.openapi.utils import get_openapi
 from fastapi.staticfiles import StaticFiles
 
-from app import __version__
+from app import __version__, security
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.pool import WorkerPool
@@ -140,6 +140,7 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
                     if ref.endswith("/ProblemDetails"):
                         content[PROBLEM_MEDIA_TYPE] = content.pop("application/json")
         _apply_limits(schema, settings)
+        security.document(schema, settings)
         app.openapi_schema = schema
         return schema
 
@@ -189,7 +190,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_middleware(
         BodyLimitMiddleware, limit=settings.max_body_bytes, path_limits={"/jobs": job_body}
     )
+    security.install_access(app, settings, metrics)  # API keys and rate limits, inside the metrics
     app.add_middleware(MetricsMiddleware, metrics=metrics)
+    security.install_headers(app, settings)  # CORS and security headers on every response
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app
 

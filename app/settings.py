@@ -8,11 +8,12 @@ solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING
 from __future__ import annotations
 
 import os
+import re
 from functools import lru_cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 __all__ = ["MAX_ARRAY_LENGTH", "MAX_BATCH_ITEMS", "Settings", "default_jobs_db", "get_settings"]
@@ -178,6 +179,45 @@ class Settings(BaseSettings):
             "on Dask, so it includes waiting behind at most this many tasks."
         ),
     )
+
+    # ------------------------------------------------------- sharing the service (issue 16)
+    api_keys_file: Path | None = Field(
+        default=None,
+        description=(
+            "Key file of the API keys (python -m app.keys create --file FILE --name NAME): with "
+            "it, every request but /healthz, /readyz, the page and the documentation needs "
+            "Authorization: Bearer <key>, and jobs belong to the key that created them. Unset: "
+            "no keys (keep the service on loopback)."
+        ),
+    )
+    rate_limit: float = Field(
+        default=50.0,
+        ge=0,
+        description=(
+            "[requests/s] sustained rate of one client (an API key; a client address without "
+            "keys); beyond it 429 with Retry-After. 0: no rate limit."
+        ),
+    )
+    rate_burst: int = Field(
+        default=100,
+        ge=1,
+        description="[requests] what one client may send at once after idling (its bucket).",
+    )
+    cors_origins: list[str] = Field(
+        default=[],
+        description=(
+            "Origins whose pages may call the API from a browser (CORS), a JSON list such as "
+            "'[\"https://wings.example.org\"]'. Empty (the default): no CORS headers at all."
+        ),
+    )
+
+    @field_validator("cors_origins")
+    @classmethod
+    def _origins(cls, origins: list[str]) -> list[str]:
+        for origin in origins:
+            if not re.fullmatch(r"https?://[^/\s*]+", origin):
+                raise ValueError(f"not an origin (scheme://host[:port], no path): {origin!r}")
+        return origins
 
 
 @lru_cache(maxsize=1)

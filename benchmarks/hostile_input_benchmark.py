@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from load_benchmark import local_server_process  # noqa: E402
 
-from tests.app import study  # noqa: E402
+from tests import study  # noqa: E402
 from tests.app.hostile import AMPLIFIER, HOSTILE, WRONG_TYPES, Hostile, Memory  # noqa: E402
 
 TIMEOUT = 120.0

@@ -324,7 +324,8 @@ def local_server_process(
             *("--timeout-keep-alive", "75"),  # as the README and the Dockerfile run it
         ],
         cwd=ROOT,
-        env=os.environ | (env or {}),
+        # The benchmarks measure the service from one address, not its per-client rate limit.
+        env=os.environ | {"FLEXWING_RATE_LIMIT": "0"} | (env or {}),
     )
     base = f"http://127.0.0.1:{port}"
     try:

@@ -254,32 +254,54 @@ def _compile_library(
             return None  # another process compiles it; `refresh` will find it
         if library.exists():
             return library
-        if functions is None:
-            functions = _symbolic_functions(layout)
-        work = Path(tempfile.mkdtemp(prefix="build-", dir=library.parent))
-        source = work / f"flexwing_{layout.n}_{layout.chordwise}.c"
-        generator = ca.CodeGenerator(source.name, {"with_header": False})
-        for function in functions:
-            generator.add(function)
-        generator.generate(str(work) + os.sep)
-        # The compiler runs in its own session and the shell finishes the job (atomic rename,
-        # clean-up) even if this process exits first: a short-lived process still leaves the
-        # library for the next one instead of a half-built directory.
-        script = (
-            f'"$0" {" ".join(_FLAGS)} -fPIC -shared "$1" -o "$2/lib.so" '
-            '&& mv -f "$2/lib.so" "$3"; status=$?; rm -rf "$2"; exit $status'
-        )
-        compiler = subprocess.Popen(
-            ["sh", "-c", script, _compiler(), str(source), str(work), str(library)],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            start_new_session=True,
-        )
-        if launched is not None:
-            launched.set()
-        stdout, stderr = compiler.communicate()
-        if compiler.returncode != 0 or not library.exists():
-            raise subprocess.CalledProcessError(compiler.returncode, _compiler(), stdout, stderr)
+        with open(library.parent / "compiler.lock", "w") as compiler_slot:
+            # One C compiler at a time per cache directory (per machine): each mesh a request
+            # names may start a compile, and a large one takes minutes and gigabytes.
+            try:
+                fcntl.flock(compiler_slot, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                if launched is not None:
+                    launched.set()  # nothing handed off yet: exiting need not wait for the queue
+                fcntl.flock(compiler_slot, fcntl.LOCK_EX)
+            if library.exists():
+                return library
+            return _generate_and_compile(layout, functions, library, launched)
+    return library
+
+
+def _generate_and_compile(
+    layout: Layout,
+    functions: _Functions | None,
+    library: Path,
+    launched: threading.Event | None,
+) -> Path:
+    """Generate the C source of `layout` and compile it into `library` (locks held)."""
+    if functions is None:
+        functions = _symbolic_functions(layout)
+    work = Path(tempfile.mkdtemp(prefix="build-", dir=library.parent))
+    source = work / f"flexwing_{layout.n}_{layout.chordwise}.c"
+    generator = ca.CodeGenerator(source.name, {"with_header": False})
+    for function in functions:
+        generator.add(function)
+    generator.generate(str(work) + os.sep)
+    # The compiler runs in its own session and the shell finishes the job (atomic rename,
+    # clean-up) even if this process exits first: a short-lived process still leaves the
+    # library for the next one instead of a half-built directory.
+    script = (
+        f'"$0" {" ".join(_FLAGS)} -fPIC -shared "$1" -o "$2/lib.so" '
+        '&& mv -f "$2/lib.so" "$3"; status=$?; rm -rf "$2"; exit $status'
+    )
+    compiler = subprocess.Popen(
+        ["sh", "-c", script, _compiler(), str(source), str(work), str(library)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+    )
+    if launched is not None:
+        launched.set()
+    stdout, stderr = compiler.communicate()
+    if compiler.returncode != 0 or not library.exists():
+        raise subprocess.CalledProcessError(compiler.returncode, _compiler(), stdout, stderr)
     return library
 
 

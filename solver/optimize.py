@@ -599,9 +599,17 @@ def _run_ipopt(
     nlp = {"x": v, "f": objective, "g": g}
     options: dict[str, Any] = {
         "ipopt.hessian_approximation": "limited-memory",
+        # Twist alone is nearly quadratic: a history as long as the design vector (up to 20)
+        # takes 46 iterations on 30 stations where IPOPT's 6 takes 66. With the spar's walls
+        # the long history overshoots into designs without equilibrium: IPOPT's 6 there.
+        "ipopt.limited_memory_max_history": 6 if space.n_wall else min(20, space.n_design),
         "ipopt.tol": tolerance,
         "ipopt.constr_viol_tol": tolerance,
         "ipopt.max_iter": 500,
+        # Stop three iterations after the error is below 1e-8 (default: fifteen below 1e-6):
+        # the optimum then holds to ~1e-9 in drag and ~1e-7 deg in twist.
+        "ipopt.acceptable_tol": 1e-8,
+        "ipopt.acceptable_iter": 3,
         "ipopt.print_level": 0,
         "ipopt.sb": "yes",
         "print_time": False,
@@ -644,8 +652,13 @@ def optimize(
     if problem.size_spar and wing.spar is None:
         raise InvalidInput("size_spar", "the wing has no spar to size")
     tolerance = 1e-10
+    rigid, rigid_twist = None, None
+    if problem.objective != "spar_mass":
+        rigid, rigid_twist = _rigid_optimum(wing, problem, options, tolerance)
     space = _DesignSpace(wing, problem, options, rigid=False)
     start = np.zeros(space.n_design)
+    if rigid_twist is not None:
+        start[: space.n_twist] = rigid_twist  # the flying shape the flexible wing aims at
     if space.n_wall:
         assert wing.spar is not None
         start[space.n_twist :] = wing.spar.wall_thickness
@@ -668,11 +681,6 @@ def optimize(
                 f"the optimum's q / local divergence pressure is {value.value:.4g}, above the "
                 f"allowed {value.upper:.4g}",
             )
-    rigid = (
-        None
-        if problem.objective == "spar_mass"
-        else _rigid_optimum(wing, problem, options, tolerance)
-    )
     jig, wall = space.split(v)
     lift = equilibrium.totals.lift
     near, far = equilibrium.totals.induced_drag, trefftz_drag(equilibrium)
@@ -708,7 +716,8 @@ def _efficiency(lift: float, problem: DesignProblem, wing: Wing, drag: float) ->
 
 def _rigid_optimum(
     wing: Wing, problem: DesignProblem, options: SolverOptions, tolerance: float
-) -> RigidOptimum:
+) -> tuple[RigidOptimum, np.ndarray]:
+    """The rigid wing's optimum, and its twist variables (where the flexible search starts)."""
     rigid_problem = dataclasses.replace(problem, size_spar=False, max_tip_heave=None)
     space = _DesignSpace(wing, rigid_problem, options, rigid=True)
     v, info, constraints = _run_ipopt(space, rigid_problem, np.zeros(space.n_design), tolerance)
@@ -718,7 +727,7 @@ def _rigid_optimum(
     lift = float(point.values["lift"][0])
     near = float(point.values["induced_drag"][0])
     far = float(point.values["trefftz_drag"][0])
-    return RigidOptimum(
+    optimum = RigidOptimum(
         jig_twist=space.split(v)[0],
         induced_drag=near,
         trefftz_drag=far,
@@ -726,6 +735,7 @@ def _rigid_optimum(
         trefftz_span_efficiency=_efficiency(lift, problem, wing, far),
         optimizer=info,
     )
+    return optimum, v[: space.n_twist]
 
 
 def _infeasible(

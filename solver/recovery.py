@@ -92,7 +92,7 @@ def from_branch(
         result.evaluation,
         iterations=iterations,
         residual_norm=result.residual_norm,
-        warm_start=True,
+        warm_start=False,  # started from the canonical branch, not from a caller's state
         started=started,
     )
     if not equilibrium.stability.stable:

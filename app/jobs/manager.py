@@ -122,6 +122,7 @@ class LiveJob:
     problem: dict[str, Any] | None = None
     task: asyncio.Task[None] | None = None
     cancel_requested: bool = False
+    principal: str = ""  # the API key that submitted it (app.keys.ApiKey.principal); "" without
     answers: int = 0  # batch items answered: their order in the database
     progress_written: float = 0.0  # [s, monotonic]
     changed: asyncio.Event = field(default_factory=asyncio.Event)
@@ -131,6 +132,7 @@ class LiveJob:
             "id": self.id,
             "operation": self.operation.name,
             "status": self.status,
+            "principal": self.principal,
             "created": self.created,
             "started": self.started,
             "finished": self.finished,
@@ -229,9 +231,12 @@ class JobManager:
 
     # ------------------------------------------------------------------------ submission
 
-    def submit(self, name: str, request: Any, *, prefix: str | None = "request") -> LiveJob:
-        """Check and queue a job; raises the endpoint's 422 problem (paths from `prefix`) or
-        503 overloaded when `max_queued_jobs` are waiting."""
+    def submit(
+        self, name: str, request: Any, *, principal: str, prefix: str | None = "request"
+    ) -> LiveJob:
+        """Check and queue a job of `principal` (its API key's; "" without keys); raises the
+        endpoint's 422 problem (paths from `prefix`) or 503 overloaded when `max_queued_jobs`
+        are waiting."""
         operation = self.operations[name]
         try:
             operation.check(request, self.settings)
@@ -245,7 +250,12 @@ class JobManager:
                 headers={"Retry-After": str(self.settings.retry_after)},
             )
         job = LiveJob(
-            secrets.token_urlsafe(16), operation, request, time.time(), operation.units(request)
+            store.new_job_id(),
+            operation,
+            request,
+            time.time(),
+            operation.units(request),
+            principal=principal,
         )
         self._live[job.id] = job
         self.store.write(store.insert_job, job.row() | {"owner": self.owner, "problem": None})
@@ -327,27 +337,34 @@ class JobManager:
 
     # ------------------------------------------------------------------- reading and cancel
 
-    async def find(self, job_id: str, *, with_result: bool = False) -> JobRow | None:
-        """A job's row (a live one from memory), None if unknown or expired."""
+    async def find(
+        self, job_id: str, *, principal: str, with_result: bool = False
+    ) -> JobRow | None:
+        """A job's row (a live one from memory), None if unknown, expired or `principal`'s
+        not (another key's job is no job, as far as this key can tell)."""
         live = self._live.get(job_id)
         if live is not None:
-            return live.row() | {"result": None}
+            return live.row() | {"result": None} if live.principal == principal else None
         row = await self.store.read(store.get_job, job_id, with_result)
         if row is None or (row["expires"] is not None and row["expires"] <= time.time()):
             return None
-        return row
+        return row if row["principal"] == principal else None
 
     async def page(
-        self, limit: int, before: tuple[float, str] | None, status: str | None
+        self, limit: int, before: tuple[float, str] | None, status: str | None, *, principal: str
     ) -> list[JobRow]:
-        rows = await self.store.read(store.list_jobs, limit, before, status, time.time())
+        """`principal`'s jobs, newest first (see `store.list_jobs`)."""
+        rows = await self.store.read(store.list_jobs, limit, before, status, time.time(), principal)
         return [self._live[r["id"]].row() if r["id"] in self._live else r for r in rows]
 
-    async def cancel(self, job_id: str) -> JobRow | None:
-        """Cancel a queued or running job; a finished one stays as it is."""
+    async def cancel(self, job_id: str, *, principal: str) -> JobRow | None:
+        """Cancel a queued or running job of `principal`; a finished one stays as it is. None
+        when `principal` has no such job."""
         job = self._live.get(job_id)
+        if job is not None and job.principal != principal:
+            return None
         if job is None:
-            return await self._cancel_elsewhere(job_id)
+            return await self._cancel_elsewhere(job_id, principal)
         job.cancel_requested = True
         if job.status == "queued":  # (its task, if any, has not begun: it never will)
             self._finish(job, "cancelled")
@@ -358,15 +375,15 @@ class JobManager:
             await asyncio.wait([job.task])
         return job.row()
 
-    async def _cancel_elsewhere(self, job_id: str) -> JobRow | None:
-        row = await self.find(job_id)
+    async def _cancel_elsewhere(self, job_id: str, principal: str) -> JobRow | None:
+        row = await self.find(job_id, principal=principal)
         if row is None or row["status"] in FINISHED_STATES:
             return row
         owner = await self.store.read(_owner_of, job_id)
         if owner is not None and self._lock.is_alive(owner):
             raise Problem("job-conflict", f"job {job_id} runs in another service process")
         await self._interrupt_orphans()
-        return await self.find(job_id)
+        return await self.find(job_id, principal=principal)
 
     # -------------------------------------------------------------------------- streaming
 

@@ -8,10 +8,14 @@ sees every write queued before it.
 Tables:
 
     jobs   one row per job: id, operation, status, owner (the service instance running it),
-           times [s since the epoch], progress (done, total, problems), result and problem as
-           JSON text;
+           principal (the API key that submitted it, `app.keys.ApiKey.principal`; "" without
+           keys: only that key sees the job), times [s since the epoch], progress (done, total,
+           problems), result and problem as JSON text;
     items  one row per answered batch item: (job, idx) -> its NDJSON line; seq is the order in
            which items were answered (what items.ndjson streams by).
+
+Ids are `new_job_id()`: 128 bits from `secrets`, so an id is as hard to guess as a key, with
+or without API keys.
 
 Owners: each service instance holds an exclusive lock (`fcntl.flock`) on a file of its own beside
 the database for as long as it lives, released by the kernel however it ends. A job still queued
@@ -30,13 +34,14 @@ import json
 import logging
 import os
 import queue
+import secrets
 import sqlite3
 import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
-__all__ = ["JobRow", "JobStore", "OwnerLock"]
+__all__ = ["JOB_ID_BYTES", "JobRow", "JobStore", "OwnerLock", "new_job_id"]
 
 log = logging.getLogger(__name__)
 
@@ -49,6 +54,7 @@ CREATE TABLE IF NOT EXISTS jobs (
     operation TEXT NOT NULL,
     status TEXT NOT NULL,
     owner TEXT NOT NULL,
+    principal TEXT NOT NULL DEFAULT '',
     created REAL NOT NULL,
     started REAL,
     finished REAL,
@@ -74,8 +80,17 @@ CREATE INDEX IF NOT EXISTS items_by_answer ON items (job, seq);
 """
 _UNFINISHED = ("queued", "running")
 _JOB_COLUMNS = (
-    "id, operation, status, owner, created, started, finished, expires, done, total, problems"
+    "id, operation, status, owner, principal, created, started, finished, expires, done, total, "
+    "problems"
 )
+JOB_ID_BYTES = 16  # 128 random bits
+
+
+def new_job_id() -> str:
+    """A new job's id: 128 random bits (`secrets`) as 22 URL-safe base64 characters."""
+    return secrets.token_urlsafe(JOB_ID_BYTES)
+
+
 _BATCH_LIMIT = 512  # queued operations run under one commit at most
 _STOP = object()
 
@@ -196,6 +211,13 @@ class JobStore:
 
 def _create_schema(connection: sqlite3.Connection) -> None:
     connection.executescript(_SCHEMA)
+    columns = {row[1] for row in connection.execute("PRAGMA table_info(jobs)")}
+    if "principal" not in columns:  # a database from before API keys: its jobs are keyless
+        with contextlib.suppress(sqlite3.OperationalError):  # another process added it first
+            connection.execute("ALTER TABLE jobs ADD COLUMN principal TEXT NOT NULL DEFAULT ''")
+    connection.execute(
+        "CREATE INDEX IF NOT EXISTS jobs_by_principal ON jobs (principal, created DESC, id DESC)"
+    )
 
 
 def insert_job(connection: sqlite3.Connection, row: JobRow) -> None:
@@ -235,10 +257,12 @@ def list_jobs(
     before: tuple[float, str] | None,
     status: str | None,
     now: float,
+    principal: str,
 ) -> list[JobRow]:
-    """Newest first, `limit` at most, created before the cursor `before` (created, id)."""
-    where = ["(expires IS NULL OR expires > ?)"]
-    args: list[Any] = [now]
+    """`principal`'s jobs, newest first, `limit` at most, created before the cursor `before`
+    (created, id)."""
+    where = ["principal = ?", "(expires IS NULL OR expires > ?)"]
+    args: list[Any] = [principal, now]
     if before is not None:
         where.append("(created < ? OR (created = ? AND id < ?))")
         args += [before[0], before[0], before[1]]

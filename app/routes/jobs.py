@@ -10,7 +10,7 @@ import json
 from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Body, FastAPI, Header, Path, Query, Request
+from fastapi import APIRouter, Body, Depends, FastAPI, Header, Path, Query, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response, StreamingResponse
 from pydantic import TypeAdapter, ValidationError
@@ -20,6 +20,7 @@ from app.jobs.models import STUDY_BATCH, JobList, JobStatus
 from app.jobs.operations import Operation, submission_type
 from app.problems import FieldError, Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
+from app.security import principal
 
 __all__ = ["ACCEPTED", "install", "make_router", "respond_async"]
 
@@ -32,6 +33,8 @@ JobId = Annotated[
         description="The job id POST /jobs answered (22 URL-safe base64 characters).",
     ),
 ]
+# Whose jobs a request sees and creates: its API key's (app.security); "" without keys.
+Principal = Annotated[str, Depends(principal)]
 _LOCATION: dict[str, Any] = {
     "Location": {"description": "/jobs/{id}", "schema": {"type": "string"}}
 }
@@ -50,7 +53,9 @@ def _problem(description: str) -> dict[str, Any]:
 
 Responses = dict[int | str, dict[str, Any]]
 _NOT_FOUND: Responses = {
-    404: _problem("No such job, or it has expired (/problems/not-found)."),
+    404: _problem(
+        "No such job, it has expired, or another API key created it (/problems/not-found)."
+    ),
     422: _problem("A job id that is not one (/problems/invalid-input, field `path.job_id`)."),
 }
 _LIST_RESPONSES: Responses = {422: _problem("A bad `limit`, `cursor` or `status`.")}
@@ -79,8 +84,11 @@ def _accepted(manager: JobManager, job_row: Mapping[str, Any]) -> JSONResponse:
     return JSONResponse(view, status_code=202, headers={"Location": view["links"]["self"]})
 
 
-async def _job_or_404(manager: JobManager, job_id: str, **kwargs: Any) -> dict[str, Any]:
-    row = await manager.find(job_id, **kwargs)
+async def _job_or_404(
+    manager: JobManager, job_id: str, owner: str, **kwargs: Any
+) -> dict[str, Any]:
+    """The job `owner` created (a job of another key is answered as no job at all)."""
+    row = await manager.find(job_id, principal=owner, **kwargs)
     if row is None:
         raise Problem("not-found", f"no job {job_id!r} (never submitted, or expired)")
     return row
@@ -124,6 +132,7 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
     async def submit_job(
         body: Annotated[submission, Body(openapi_examples=examples)],  # type: ignore[valid-type]
         request: Request,
+        owner: Principal,
     ) -> Any:
         """Accepted at once: 202 with the job's id and `Location: /jobs/{id}`.
 
@@ -132,7 +141,11 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
         FLEXWING_JOB_RUNNERS at once, each spread over every worker.
         """
         manager = _manager(request)
-        job = manager.submit(body.operation, body.request)  # type: ignore[attr-defined]
+        job = manager.submit(
+            body.operation,  # type: ignore[attr-defined]
+            body.request,  # type: ignore[attr-defined]
+            principal=owner,
+        )
         return _accepted(manager, job.row())
 
     _add_list_route(router)
@@ -164,6 +177,7 @@ def _add_list_route(router: APIRouter) -> None:
     )
     async def list_jobs(
         request: Request,
+        owner: Principal,
         limit: Annotated[int, Query(ge=1, le=200, description="[-] jobs per page.")] = 50,
         cursor: Annotated[
             str | None, Query(max_length=200, description="`next` of the previous page.")
@@ -173,10 +187,11 @@ def _add_list_route(router: APIRouter) -> None:
             Query(description="Only jobs in this state."),
         ] = None,
     ) -> Any:
-        """Without results (GET /jobs/{id} has them); `next` is the following page."""
+        """This API key's jobs (every job without keys), without results (GET /jobs/{id} has
+        them); `next` is the following page."""
         manager = _manager(request)
         before = None if cursor is None else _parse_cursor(cursor)
-        rows = await manager.page(limit + 1, before, status)
+        rows = await manager.page(limit + 1, before, status, principal=owner)
         page = rows[:limit]
         following = None
         if len(rows) > limit:
@@ -194,10 +209,10 @@ def _add_job_routes(router: APIRouter) -> None:
         responses=_NOT_FOUND,
         summary="A job's state, progress, and result or problem",
     )
-    async def get_job(job_id: JobId, request: Request) -> Any:
+    async def get_job(job_id: JobId, request: Request, owner: Principal) -> Any:
         """`result` is what the synchronous endpoint answers (a batch's: every item in order)."""
         manager = _manager(request)
-        row = await _job_or_404(manager, job_id, with_result=True)
+        row = await _job_or_404(manager, job_id, owner, with_result=True)
         return _job_response(manager, row)
 
     @router.delete(
@@ -207,11 +222,11 @@ def _add_job_routes(router: APIRouter) -> None:
         responses=_CANCEL_RESPONSES,
         summary="Cancel a job",
     )
-    async def cancel_job(job_id: JobId, request: Request) -> Any:
+    async def cancel_job(job_id: JobId, request: Request, owner: Principal) -> Any:
         """Work not yet started is not run (`progress` says what was done; a batch's answered
         items stay in items.ndjson). A finished job is left as it is."""
         manager = _manager(request)
-        row = await manager.cancel(job_id)
+        row = await manager.cancel(job_id, principal=owner)
         if row is None:
             raise Problem("not-found", f"no job {job_id!r} (never submitted, or expired)")
         return JSONResponse(job_view(row, manager.operations))
@@ -273,9 +288,9 @@ def _add_streaming_routes(router: APIRouter) -> None:
         responses=_EVENTS_RESPONSES,
         summary="Server-sent events of a job's progress and final state",
     )
-    async def job_events(job_id: JobId, request: Request) -> Any:
+    async def job_events(job_id: JobId, request: Request, owner: Principal) -> Any:
         manager = _manager(request)
-        first = await _job_or_404(manager, job_id)
+        first = await _job_or_404(manager, job_id, owner)
         return StreamingResponse(
             manager.events(job_id, first),
             media_type="text/event-stream",
@@ -289,9 +304,9 @@ def _add_streaming_routes(router: APIRouter) -> None:
         responses=_ITEMS_RESPONSES,
         summary="A batch job's items, streamed as they are answered",
     )
-    async def job_items(job_id: JobId, request: Request) -> Any:
+    async def job_items(job_id: JobId, request: Request, owner: Principal) -> Any:
         manager = _manager(request)
-        row = await _job_or_404(manager, job_id)
+        row = await _job_or_404(manager, job_id, owner)
         operation = manager.operations.get(row["operation"])
         if operation is None or not operation.has_items:
             raise Problem("not-found", f"job {job_id!r} is a {row['operation']}: it has no items")
@@ -323,6 +338,7 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
 
     async def prefer_respond_async(
         request: Request,
+        owner: Principal,
         prefer: Annotated[
             str | None,
             Header(
@@ -343,7 +359,7 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
         except ValidationError as error:
             errors = [dict(e) | {"loc": ("body", *e["loc"])} for e in error.errors()]
             raise RequestValidationError(errors) from None
-        job = manager.submit(operation, body, prefix=None)
+        job = manager.submit(operation, body, principal=owner, prefix=None)
         response = _accepted(manager, job.row())
         response.headers["Preference-Applied"] = "respond-async"
         raise JobAccepted(response)

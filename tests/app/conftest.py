@@ -4,6 +4,9 @@
 disk cache, FLEXWING_CACHE_DIR, if it is not there yet).
 `fault_server`: 2 workers on CasADi's virtual machine (no compilation, a private cache dir), with
 short limits, for the tests that kill workers, overrun budgets and overload the pool.
+Servers run without rate limits (FLEXWING_RATE_LIMIT=0) unless a test sets them: the load, fuzz
+and fault tests measure the service from one address, not the limiter (tests/app/test_security.py
+tests the limiter, with its defaults too).
 """
 
 from __future__ import annotations
@@ -59,9 +62,10 @@ class Server:
             time.sleep(0.05)
         raise TimeoutError(f"server not ready:\n{self.log.read_text()}")
 
-    def metric(self, name: str, **labels: str) -> float:
-        """The value of one sample of /metrics (0 if absent)."""
-        text = httpx.get(self.base_url + "/metrics", timeout=10).text
+    def metric(self, name: str, *, key: str | None = None, **labels: str) -> float:
+        """The value of one sample of /metrics (0 if absent); `key`: the API key to ask with."""
+        headers = {} if key is None else {"Authorization": f"Bearer {key}"}
+        text = httpx.get(self.base_url + "/metrics", headers=headers, timeout=10).text
         wanted = ",".join(f'{k}="{v}"' for k, v in sorted(labels.items()))
         for line in text.splitlines():
             if line.startswith("#"):
@@ -80,15 +84,18 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def _start(tmp: Path, name: str, env: dict[str, str]) -> Iterator[Server]:
+def _start(
+    tmp: Path, name: str, env: dict[str, str], log_level: str = "warning"
+) -> Iterator[Server]:
     port = _free_port()
     log = tmp / f"{name}.log"
-    full_env = os.environ | {"FLEXWING_WORKERS": "2", "PYTHONUNBUFFERED": "1"} | env
+    defaults = {"FLEXWING_WORKERS": "2", "FLEXWING_RATE_LIMIT": "0", "PYTHONUNBUFFERED": "1"}
+    full_env = os.environ | defaults | env
     with open(log, "wb") as out:
         process = subprocess.Popen(
             [
                 *(sys.executable, "-m", "uvicorn", "app.main:app"),
-                *("--host", "127.0.0.1", "--port", str(port), "--log-level", "warning"),
+                *("--host", "127.0.0.1", "--port", str(port), "--log-level", log_level),
                 *("--timeout-keep-alive", "75"),  # as the README and Dockerfile run it
             ],
             cwd=ROOT,
@@ -134,12 +141,12 @@ def fault_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
 @pytest.fixture(scope="module")
 def make_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Callable[..., Server]]:
     """A factory of extra servers with their own FLEXWING_* environment, e.g.
-    ``make_server("tiny_budget", FLEXWING_SOLVE_TIMEOUT="0.2")``; each is stopped (SIGINT) at
-    the end of the module unless the test has stopped it already."""
+    ``make_server("tiny_budget", FLEXWING_SOLVE_TIMEOUT="0.2")`` (and uvicorn's `log_level`);
+    each is stopped (SIGINT) at the end of the module unless the test has stopped it already."""
     with contextlib.ExitStack() as stack:
 
-        def make(name: str, **env: str) -> Server:
-            started = _start(tmp_path_factory.mktemp(name), name, env)
+        def make(name: str, *, log_level: str = "warning", **env: str) -> Server:
+            started = _start(tmp_path_factory.mktemp(name), name, env, log_level)
             server = next(started)
             stack.callback(started.close)
             return server

@@ -92,6 +92,9 @@ def api_schema(server: Server) -> schemathesis.BaseSchema:
 OPERATIONS = [
     ("POST", "/solve"),
     ("POST", "/sweep"),
+    # Design (issue 12): fewer cases; a generated request that is a physical wing runs an
+    # optimisation.
+    ("POST", "/optimize"),
     ("GET", "/healthz"),
     ("GET", "/readyz"),
     # Jobs (issue 13): fewer cases; ids the fuzzer makes up are never a job's (404).
@@ -105,10 +108,11 @@ OPERATIONS = [
 POSITIVE, NEGATIVE = GenerationMode.POSITIVE, GenerationMode.NEGATIVE
 # Parameterless GET operations have no invalid request to generate.
 RUNS = [(m, p, POSITIVE, s) for m, p in OPERATIONS for s in SEEDS] + [
-    ("POST", p, NEGATIVE, s) for p in ("/solve", "/sweep", "/jobs") for s in SEEDS
+    ("POST", p, NEGATIVE, s) for p in ("/solve", "/sweep", "/optimize", "/jobs") for s in SEEDS
 ]
 # Per seed and mode.
 CASES_PER_JOB_OPERATION = {"POST /jobs": 50, "GET /jobs": 15}
+CASES_PER_DESIGN_OPERATION = 50
 
 
 def test_the_document_lists_exactly_these_operations(api_schema: schemathesis.BaseSchema) -> None:
@@ -124,6 +128,8 @@ def _examples(method: str, path: str) -> int:
     """Per seed and mode; parameterless GET operations have a handful of distinct requests."""
     if path.startswith("/jobs"):
         return fuzz_examples(CASES_PER_JOB_OPERATION.get(f"{method} {path}", 5))
+    if path == "/optimize":
+        return fuzz_examples(CASES_PER_DESIGN_OPERATION)
     return fuzz_examples(CASES_PER_BODY_OPERATION // 4 if method == "POST" else 5)
 
 

@@ -1,5 +1,7 @@
 // The service's HTTP API as the page uses it. URLs are relative to the page, so the page works
-// behind a path prefix too.
+// behind a path prefix too. Requests carry the tab's API key, if one is kept (key.js).
+
+import { authorization } from "./key.js";
 
 /** An answer that is not a 2xx: an RFC 9457 problem (or a stand-in for a non-problem body). */
 export class ProblemError extends Error {
@@ -15,7 +17,11 @@ async function postJSON(path, body, { signal } = {}) {
   try {
     response = await fetch(new URL(path, document.baseURI), {
       method: "POST",
-      headers: { "content-type": "application/json", accept: "application/json, application/problem+json" },
+      headers: {
+        "content-type": "application/json",
+        accept: "application/json, application/problem+json",
+        ...authorization(),
+      },
       body: JSON.stringify(body),
       signal,
     });

@@ -13,6 +13,7 @@ import {
   setPath,
 } from "./fields.js";
 import * as figures from "./figures.js";
+import { askForKey, installKeyBox } from "./key.js";
 import { StationTable, stationsFromPlanform } from "./wing.js";
 
 const $ = (id) => document.getElementById(id);
@@ -124,6 +125,7 @@ function sweepRequest() {
 async function addOptionalFields() {
   const doc = await api.openapi();
   const schemas = doc?.components?.schemas ?? {};
+  const stations = table.read(); // before a column is added: read() reads every column's cells
   let columns = false;
   for (const field of OPTIONAL_FIELDS) {
     const property = schemas[field.schema]?.properties?.[field.property];
@@ -137,7 +139,7 @@ async function addOptionalFields() {
     const parent = field.schema === "Flight" ? $("flight") : $("wing-extra");
     state.extra.push({ field: described, control: renderField(described, parent) });
   }
-  if (columns) table.fill(table.read());
+  if (columns) table.fill(stations);
 }
 
 // ------------------------------------------------------------------------------------ errors
@@ -244,6 +246,14 @@ function plainProblem(error, velocity) {
         fold != null
           ? `This wing twists until it diverges: its equilibria end at the fold speed, ${fold.toFixed(2)} m/s, and none exists faster. Fly slower than ${fold.toFixed(2)} m/s, or make the wing stiffer in torsion (GJ) or move its elastic axis forward.`
           : "This wing twists until it diverges at this airspeed, and the fold speed where its equilibria end could not be located. Try a lower airspeed.",
+    };
+  }
+  if (type.endsWith("/key-missing") || type.endsWith("/key-invalid")) {
+    askForKey();
+    const missing = type.endsWith("/key-missing");
+    return {
+      title: missing ? "This service needs an API key" : "The API key was not accepted",
+      text: `${missing ? "Enter" : "Check"} the key its operator gave you under "API key" at the top of the page.`,
     };
   }
   if (type.endsWith("/invalid-input")) {
@@ -751,6 +761,10 @@ async function main() {
   render(SWEEP_FIELDS, $("sweep"), { form: "sweep-form" });
   for (const key of ["2", "3", "4", "5"]) figures.clear(`14.${key}`);
   wire();
+  installKeyBox(async () => {
+    await runSolve();
+    await runSweep();
+  });
   setMode("planform");
   await addOptionalFields();
   // The study's wing, solved and swept as the page opens.

@@ -1,0 +1,350 @@
+"""Sharing the service: API keys, rate limits, security headers and CORS (issue 16).
+
+A request passes, outermost first:
+
+    SecurityHeadersMiddleware  every response: X-Content-Type-Options, a Content-Security-Policy
+                               (the route's own, e.g. the page's; else one that allows nothing:
+                               API answers are data), frame-ancestors and X-Frame-Options,
+                               Referrer-Policy, Cross-Origin-Resource-Policy
+    CORSMiddleware             only with FLEXWING_CORS_ORIGINS: those origins may call the API
+    MetricsMiddleware          (app.metrics) 401 and 429 answers are counted there too
+    AccessMiddleware           who asks (an API key, else the client address); 401 without a
+                               valid key where one is needed; 429 over the client's rate
+    ... the body limit and the routes.
+
+With keys on (FLEXWING_API_KEYS_FILE, `app.keys`), every path needs ``Authorization: Bearer
+<key>`` except the probes (/healthz, /readyz) and what a browser loads before anyone can type a
+key: the page (/), its files (/static/), the documentation (/docs, /openapi.json) and the problem
+types (/problems/...). None of those holds anything of a user's. A missing key and a wrong one
+are told apart (/problems/key-missing, /problems/key-invalid); a wrong key's answer is the same
+whether it was mistyped, revoked or never issued. Routes get the request's owner of jobs by
+``Depends(principal)``.
+
+Rate limits (`app.ratelimit`) apply per key, or per client address without keys (behind a proxy,
+the address uvicorn takes from X-Forwarded-For when the proxy is in --forwarded-allow-ips), to
+every path but the probes. Keys never reach a log: nothing here logs a header, and uvicorn's
+access log has the request line only (keys are never accepted in a URL).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Awaitable, Callable
+from dataclasses import dataclass
+from typing import Any
+
+from fastapi import FastAPI, Request
+from prometheus_client import CollectorRegistry, Counter
+from starlette.middleware.cors import CORSMiddleware
+
+from app.keys import ApiKey, KeyRing
+from app.metrics import ASGIApp, Message, Metrics, Scope
+from app.problems import PROBLEM_MEDIA_TYPE, PROBLEM_TYPES, Problem, ProblemType, problem_response
+from app.ratelimit import TokenBuckets, address_bucket, rate_limited
+from app.settings import Settings
+
+__all__ = [
+    "API_CONTENT_SECURITY_POLICY",
+    "PUBLIC_PATHS",
+    "SECURITY_SCHEME",
+    "UNLIMITED_PATHS",
+    "AccessMiddleware",
+    "Client",
+    "SecurityHeadersMiddleware",
+    "document",
+    "install_access",
+    "install_headers",
+    "is_public",
+    "principal",
+]
+
+PROBLEM_TYPES["key-missing"] = ProblemType(
+    "key-missing",
+    "API key missing",
+    401,
+    "This service has API keys (FLEXWING_API_KEYS_FILE): send `Authorization: Bearer <key>`. "
+    "Its operator creates keys with `python -m app.keys create`. /healthz, /readyz, the page "
+    "and the documentation need none.",
+)
+PROBLEM_TYPES["key-invalid"] = ProblemType(
+    "key-invalid",
+    "API key not accepted",
+    401,
+    "The key sent as `Authorization: Bearer <key>` is not one of this service's keys. The "
+    "answer is the same whether it was mistyped, revoked or never issued.",
+)
+
+# Needs no key: the probes, and what a browser loads before anyone can type a key.
+PUBLIC_PATHS = frozenset({"/healthz", "/readyz", "/", "/docs", "/openapi.json"})
+PUBLIC_PREFIXES = ("/static/", "/problems/")
+# Not rate limited: probes poll.
+UNLIMITED_PATHS = frozenset({"/healthz", "/readyz"})
+
+ANONYMOUS = "anonymous"  # the metrics label of requests without a key
+SECURITY_SCHEME = "apiKey"
+_STATE = "flexwing_client"
+
+# What an API answer (data, never a document to render) allows: nothing.
+API_CONTENT_SECURITY_POLICY = (
+    "default-src 'none'; frame-ancestors 'none'; base-uri 'none'; form-action 'none'"
+)
+_SECURITY_HEADERS: tuple[tuple[bytes, bytes], ...] = (
+    (b"x-content-type-options", b"nosniff"),
+    (b"content-security-policy", API_CONTENT_SECURITY_POLICY.encode()),
+    (b"x-frame-options", b"DENY"),
+    (b"referrer-policy", b"no-referrer"),
+    (b"cross-origin-resource-policy", b"same-origin"),
+)
+
+
+def is_public(path: str) -> bool:
+    """Whether `path` is served without a key when keys are on."""
+    return path in PUBLIC_PATHS or path.startswith(PUBLIC_PREFIXES)
+
+
+@dataclass(frozen=True)
+class Client:
+    """Who sent a request: the owner of the jobs it creates or sees (`principal`: an API key's,
+    "" without one), its metrics label and its rate-limit bucket."""
+
+    principal: str
+    label: str
+    bucket: str
+
+    @classmethod
+    def of_key(cls, key: ApiKey) -> Client:
+        return cls(key.principal, key.fingerprint, f"key:{key.principal}")
+
+    @classmethod
+    def of_address(cls, scope: Scope) -> Client:
+        client = scope.get("client")
+        return cls("", ANONYMOUS, address_bucket(client[0] if client else None))
+
+
+def principal(request: Request) -> str:
+    """A dependency: the owner of the jobs this request creates or sees (its API key's digest
+    in hex; "" without keys, where every client is the same owner)."""
+    client = request.scope.get("state", {}).get(_STATE)
+    return client.principal if isinstance(client, Client) else ""
+
+
+class AccessMetrics:
+    """Requests and refusals per client, labelled by a key's fingerprint (never the key)."""
+
+    def __init__(self, registry: CollectorRegistry) -> None:
+        self.requests = Counter(
+            "flexwing_client_requests",
+            "Requests by client: an API key's fingerprint (python -m app.keys list), or "
+            "anonymous (no keys, or no key on a public path).",
+            ["key_fingerprint"],
+            registry=registry,
+        )
+        self.refusals = Counter(
+            "flexwing_client_refusals",
+            "Requests refused, by client and reason: rate-limited (429), key-missing and "
+            "key-invalid (401, anonymous).",
+            ["key_fingerprint", "reason"],
+            registry=registry,
+        )
+
+
+def _bearer(scope: Scope) -> bytes | None:
+    """The key of an ``Authorization: Bearer <key>`` header, None without one."""
+    for name, value in scope.get("headers") or ():
+        if name == b"authorization":
+            scheme, _, key = value.strip().partition(b" ")
+            key = key.strip()
+            return key if scheme.lower() == b"bearer" and key else None
+    return None
+
+
+class AccessMiddleware:
+    """Identifies the client, refuses a request without a valid key where one is needed (401)
+    and one over the client's rate (429); pure ASGI, the body is never read."""
+
+    def __init__(
+        self,
+        app: ASGIApp,
+        keys: KeyRing | None,
+        buckets: TokenBuckets | None,
+        metrics: AccessMetrics,
+    ) -> None:
+        self.app = app
+        self.keys = keys
+        self.buckets = buckets
+        self.metrics = metrics
+
+    async def __call__(
+        self,
+        scope: Scope,
+        receive: Callable[[], Awaitable[Message]],
+        send: Callable[[Message], Awaitable[None]],
+    ) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        path = scope["path"]
+        key = None
+        if self.keys is not None:
+            presented = _bearer(scope)
+            key = None if presented is None else self.keys.verify(presented)
+            if key is None and not is_public(path):
+                await self._unauthorized(presented is None, scope, receive, send)
+                return
+        client = Client.of_address(scope) if key is None else Client.of_key(key)
+        scope.setdefault("state", {})[_STATE] = client
+        self.metrics.requests.labels(client.label).inc()
+        if self.buckets is not None and path not in UNLIMITED_PATHS:
+            wait = self.buckets.take(client.bucket)
+            if wait > 0.0:
+                self.metrics.refusals.labels(client.label, "rate-limited").inc()
+                await problem_response(rate_limited(wait, self.buckets), path)(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
+    async def _unauthorized(
+        self,
+        missing: bool,
+        scope: Scope,
+        receive: Callable[[], Awaitable[Message]],
+        send: Callable[[Message], Awaitable[None]],
+    ) -> None:
+        if missing:
+            reason = "key-missing"
+            problem = Problem(
+                reason,
+                "this request needs an API key: send Authorization: Bearer <key>",
+                headers={"WWW-Authenticate": 'Bearer realm="flexwing"'},
+            )
+        else:
+            reason = "key-invalid"
+            problem = Problem(
+                reason,
+                "the API key sent is not one of this service's keys",
+                headers={"WWW-Authenticate": 'Bearer realm="flexwing", error="invalid_token"'},
+            )
+        self.metrics.requests.labels(ANONYMOUS).inc()
+        self.metrics.refusals.labels(ANONYMOUS, reason).inc()
+        await problem_response(problem, scope["path"])(scope, receive, send)
+
+
+class SecurityHeadersMiddleware:
+    """Adds the security headers a response does not set itself (pure ASGI); responses other
+    than the app's files get ``Cache-Control: no-store`` unless they say otherwise."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(
+        self,
+        scope: Scope,
+        receive: Callable[[], Awaitable[Message]],
+        send: Callable[[Message], Awaitable[None]],
+    ) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        static = scope["path"].startswith("/static/")
+
+        async def send_with_headers(message: Message) -> None:
+            if message["type"] == "http.response.start":
+                headers = list(message.get("headers") or [])
+                present = {name.lower() for name, _ in headers}
+                headers += [(n, v) for n, v in _SECURITY_HEADERS if n not in present]
+                if not static and b"cache-control" not in present:
+                    headers.append((b"cache-control", b"no-store"))
+                message["headers"] = headers
+            await send(message)
+
+        await self.app(scope, receive, send_with_headers)
+
+
+# ------------------------------------------------------------------------ installation
+
+
+def install_access(app: FastAPI, settings: Settings, metrics: Metrics) -> None:
+    """API keys (FLEXWING_API_KEYS_FILE; an unreadable or malformed file stops the start) and
+    rate limits (FLEXWING_RATE_LIMIT, FLEXWING_RATE_BURST). Add it inside the metrics."""
+    keys = None if settings.api_keys_file is None else KeyRing(settings.api_keys_file)
+    buckets = None
+    if settings.rate_limit > 0:
+        buckets = TokenBuckets(settings.rate_limit, settings.rate_burst)
+    app.state.keys = keys
+    app.add_middleware(
+        AccessMiddleware, keys=keys, buckets=buckets, metrics=AccessMetrics(metrics.registry)
+    )
+
+
+def install_headers(app: FastAPI, settings: Settings) -> None:
+    """CORS (FLEXWING_CORS_ORIGINS; none by default) and the security headers, outermost."""
+    if settings.cors_origins:
+        app.add_middleware(
+            CORSMiddleware,
+            allow_origins=settings.cors_origins,
+            allow_methods=["GET", "HEAD", "POST", "DELETE"],
+            allow_headers=["Authorization", "Content-Type", "Accept", "Prefer"],
+            expose_headers=["Location", "Retry-After", "Preference-Applied", "WWW-Authenticate"],
+            max_age=600,
+        )
+    app.add_middleware(SecurityHeadersMiddleware)
+
+
+# ------------------------------------------------------------------------ OpenAPI document
+
+
+def _problem(description: str, header: str, meaning: str, kind: str) -> dict[str, Any]:
+    problem = {"schema": {"$ref": "#/components/schemas/ProblemDetails"}}
+    return {
+        "description": description,
+        "headers": {header: {"description": meaning, "schema": {"type": kind}}},
+        "content": {PROBLEM_MEDIA_TYPE: problem},
+    }
+
+
+def document(schema: dict[str, Any], settings: Settings) -> None:
+    """Declare the bearer key scheme (required with keys on; optional, `{}`, without), the 401
+    and 429 answers, and say so in the description."""
+    schema.setdefault("components", {}).setdefault("securitySchemes", {})[SECURITY_SCHEME] = {
+        "type": "http",
+        "scheme": "bearer",
+        "description": (
+            "An API key from the service's operator (`python -m app.keys create`), sent as "
+            "`Authorization: Bearer <key>`; needed when the service has keys "
+            "(FLEXWING_API_KEYS_FILE)."
+        ),
+    }
+    keyed = settings.api_keys_file is not None
+    schema["security"] = [{SECURITY_SCHEME: []}] if keyed else [{SECURITY_SCHEME: []}, {}]
+    unauthorized = _problem(
+        "No API key or a wrong one (/problems/key-missing, /problems/key-invalid).",
+        "WWW-Authenticate",
+        'Bearer realm="flexwing" (and error="invalid_token" for a wrong key)',
+        "string",
+    )
+    limited = _problem(
+        "Over this client's rate limit (/problems/rate-limited): retry after Retry-After.",
+        "Retry-After",
+        "[s] until this client's next request is accepted",
+        "integer",
+    )
+    for path, item in schema.get("paths", {}).items():
+        for operation in item.values():
+            responses = operation.setdefault("responses", {})
+            if is_public(path):
+                operation["security"] = []
+            else:
+                responses.setdefault("401", unauthorized)
+            if settings.rate_limit > 0 and path not in UNLIMITED_PATHS:
+                responses.setdefault("429", limited)
+    sharing = (
+        "Sharing: with API keys on (FLEXWING_API_KEYS_FILE) every operation but healthz and readyz "
+        "needs `Authorization: Bearer <key>` (401 /problems/key-missing or /problems/key-invalid "
+        "otherwise), and a job is seen only by the key that created it."
+    )
+    if settings.rate_limit > 0:
+        sharing += (
+            f" Each client (its key; its address without keys) may send {settings.rate_burst} "
+            f"requests at once and {settings.rate_limit:g} per second (FLEXWING_RATE_BURST, "
+            "FLEXWING_RATE_LIMIT); beyond that 429 /problems/rate-limited with Retry-After."
+        )
+    info = schema.setdefault("info", {})
+    info["description"] = info.get("description", "").rstrip() + "\n\n" + sharing + "\n"
