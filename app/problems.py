@@ -15,6 +15,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.routing import Match
 
 __all__ = [
     "PROBLEM_MEDIA_TYPE",
@@ -251,6 +252,17 @@ def validation_errors(raw: Sequence[Any]) -> list[FieldError]:
     return errors
 
 
+def _allowed_methods(request: Request) -> str:
+    """Every method some route serves at this path (RFC 9110: a 405 lists them all in Allow;
+    Starlette lists only those of the first route whose path matched). HEAD comes with GET."""
+    allowed = []
+    for method in ("DELETE", "GET", "HEAD", "PATCH", "POST", "PUT"):
+        scope = {**request.scope, "method": method}
+        if any(route.matches(scope)[0] == Match.FULL for route in request.app.router.routes):
+            allowed.append(method)
+    return ", ".join(allowed)
+
+
 def install_handlers(app: FastAPI) -> None:
     """Map every exception the app can see to a problem+json response."""
 
@@ -271,7 +283,10 @@ def install_handlers(app: FastAPI) -> None:
         slug = {404: "not-found", 405: "method-not-allowed", 413: "body-too-large"}.get(
             exc.status_code, "http-error"
         )
-        problem = Problem(slug, str(exc.detail), headers=exc.headers)
+        headers = dict(exc.headers or {})
+        if exc.status_code == 405:
+            headers["Allow"] = _allowed_methods(request)
+        problem = Problem(slug, str(exc.detail), headers=headers)
         return problem_response(problem, request.url.path, status=exc.status_code)
 
     async def on_error(request: Request, exc: Exception) -> JSONResponse:

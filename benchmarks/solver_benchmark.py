@@ -225,11 +225,13 @@ print(json.dumps({{"cpu_s": cpu, "wall_s": wall, "failures": len(result["failure
 """
 
 
-def aerosandbox_seconds(python: str, n: int, velocities: list[float]) -> dict:
-    """AeroSandbox on the study's wing (one process: import, Opti build, solves in the order
-    given, each warm-started from the last): wall time of the whole process, and wall and CPU
-    time of IPOPT per solve [s]."""
-    case = dict(study_case(n), velocities=velocities)
+def aerosandbox_seconds(
+    python: str, n: int, velocities: list[float], chordwise_panels: int = 1
+) -> dict:
+    """AeroSandbox on the study's wing with k = `chordwise_panels` (one process: import, Opti
+    build, solves in the order given, each warm-started from the last): wall time of the whole
+    process, and wall and CPU time of IPOPT per solve [s]."""
+    case = dict(study_case(n), velocities=velocities, chordwise_resolution=chordwise_panels)
     with tempfile.TemporaryDirectory() as work:
         case_path = Path(work) / "case.json"
         case_path.write_text(json.dumps(case))

@@ -244,6 +244,26 @@ def test_unknown_path_and_method(client: httpx.Client) -> None:
     _problem(client.get("/solve"), 405, "method-not-allowed")
 
 
+@pytest.mark.parametrize(
+    ("method", "path", "allowed"),
+    [
+        ("GET", "/solve", {"POST"}),
+        ("OPTIONS", "/jobs", {"GET", "POST"}),
+        ("PUT", "/jobs/some-id", {"GET", "DELETE"}),
+    ],
+    ids=["solve", "jobs", "one-job"],
+)
+def test_a_405_lists_every_method_the_path_serves(
+    client: httpx.Client, method: str, path: str, allowed: set[str]
+) -> None:
+    # RFC 9110 15.5.6: Allow lists the target's methods, whichever route serves each of them
+    # (HEAD comes with GET).
+    response = client.request(method, path)
+    _problem(response, 405, "method-not-allowed")
+    listed = {m.strip() for m in response.headers["allow"].split(",")}
+    assert listed - {"HEAD"} == allowed
+
+
 def test_problem_types_are_described(client: httpx.Client) -> None:
     response = client.get("/problems/no-equilibrium")
     assert response.status_code == 200
