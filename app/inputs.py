@@ -37,6 +37,7 @@ __all__ = [
     "optimize_input",
     "solve_input",
     "solver_options",
+    "station_limit_errors",
     "sweep_input",
 ]
 
@@ -74,6 +75,38 @@ def _stations(model: schemas.Wing) -> list[float] | np.ndarray:
     if isinstance(model.y, schemas.StationSpacing):
         return np.linspace(0.0, model.y.semispan, model.y.stations)
     return model.y
+
+
+def station_limit_errors(request: schemas.SolveRequest, settings: Settings) -> list[FieldError]:
+    """What the published schema says of FLEXWING_MAX_STATIONS (`x-flexwing-limit`): N and every
+    per-station list (of the wing, its spar and the initial guess) at most `max_stations` long.
+
+    A batch checks these before it accepts its items (the document states them, so a body that
+    breaks one is invalid as a whole); the rest of an item is checked when it is solved."""
+    limit = settings.max_stations
+    errors = []
+    y = request.wing.y
+    if isinstance(y, schemas.StationSpacing) and y.stations > limit:
+        errors.append(
+            FieldError("wing.y.stations", f"must be at most {limit} (FLEXWING_MAX_STATIONS)")
+        )
+    groups = {
+        "wing": request.wing,
+        "wing.spar": request.wing.spar,
+        "initial_guess": request.initial_guess,
+    }
+    for path, group in groups.items():
+        for name in type(group).model_fields if group is not None else ():
+            values = getattr(group, name)
+            if isinstance(values, list) and len(values) > limit:
+                errors.append(
+                    FieldError(
+                        f"{path}.{name}",
+                        f"has {len(values)} values; at most {limit} are allowed "
+                        "(FLEXWING_MAX_STATIONS)",
+                    )
+                )
+    return errors
 
 
 def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> Wing | None:

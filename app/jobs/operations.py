@@ -25,7 +25,7 @@ from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 from pydantic import BaseModel, Discriminator, Field, Tag, create_model
 from pydantic.json_schema import SkipJsonSchema
 
-from app.inputs import optimize_input, solve_input, sweep_input
+from app.inputs import optimize_input, solve_input, station_limit_errors, sweep_input
 from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem
 from app.schemas import (
@@ -162,6 +162,13 @@ def _check_batch(request: BatchRequest, settings: Settings) -> None:
             "(FLEXWING_MAX_BATCH_ITEMS)"
         )
         raise Problem.invalid([FieldError("items", reason)])
+    errors = [
+        FieldError(f"items[{index}].{error.field}", error.reason)
+        for index, item in enumerate(request.items)
+        for error in station_limit_errors(item, settings)
+    ]
+    if errors:
+        raise Problem.invalid(errors)
 
 
 async def answer_item(context: JobContext, index: int, request: SolveRequest) -> tuple[bool, str]:

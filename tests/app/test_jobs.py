@@ -191,6 +191,18 @@ def test_a_batch_item_that_is_not_a_solve_request_is_a_422_naming_it(
     assert _fields(response) == ["request.items[3].wing.chord[2]"]
 
 
+def test_a_batch_item_beyond_the_published_station_limit_is_a_422_naming_it(
+    client: httpx.Client,
+) -> None:
+    # The document says at most FLEXWING_MAX_STATIONS (150) stations and values per station:
+    # a body that breaks it is invalid as a whole, not an item answered with a problem.
+    items = [study.solve_request(10.0) for _ in range(3)]
+    items[1]["wing"]["y"] = {"semispan": 5.0, "stations": 151}
+    items[2]["wing"]["chord"] = [1.0] * 151
+    response = submit(client, {"operation": "batch", "request": {"items": items}})
+    assert _fields(response) == ["request.items[1].wing.y.stations", "request.items[2].wing.chord"]
+
+
 @pytest.mark.parametrize(
     ("body", "fields"),
     [
