@@ -468,9 +468,8 @@ class Wing(_Model):
     )
     cl_max: StationValues[ClMaxNumber] | None = _described(
         "cl_max",
-        "the sections' maximum lift coefficient, past which a section stalls (the finding "
-        "section_stall; the answer's numbers do not depend on it); null: "
-        "options.validity.cl_max,",
+        "the sections' maximum lift coefficient (null: options.validity.cl_max), past which a "
+        "section stalls (the finding section_stall; the answer's numbers do not depend on it),",
         default=None,
         examples=[1.4],
     )
