@@ -26,9 +26,10 @@ async def solve(
 ) -> Any:
     """Deformation, loads, totals and stability of the wing's equilibrium.
 
-    Newton starts from the stored equilibrium of the same wing nearest in dynamic pressure and
-    alpha (`solver.warm_start`); a repeated request is answered from the result cache
-    (`solver.cached`). Past torsional divergence there is no equilibrium: 422
-    `/problems/no-equilibrium` with the fold speed.
+    The answer is the equilibrium on the branch from the jig shape at this condition, followed
+    in dynamic pressure from the jig: it depends on the request only, never on what was asked
+    before. A repeated request is answered from the result cache (`solver.cached`, the same
+    numbers). Past torsional divergence there is no equilibrium: 422 `/problems/no-equilibrium`
+    with the fold speed. `validity` says where the answer leaves the model's validity.
     """
     return await request.app.state.service.solve(body)

@@ -24,11 +24,17 @@ router = APIRouter(tags=["equilibrium"])
 async def sweep(
     body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)], request: Request
 ) -> Any:
-    """Solves the airspeeds in the given order, each from the previous equilibrium.
+    """Solves the airspeeds, answered in the given order, each on its own.
+
+    At a fixed alpha the branch from the jig is traced to its fold first and each point is
+    Newton from the branch's state at its dynamic pressure; trimmed (`flight.lift` or
+    `flight.weight`) each point is trimmed at its speed. Either way a point depends on its own
+    speed only, never on the order or on the other speeds, and agrees with /solve there.
 
     A point without equilibrium (beyond the fold) is reported in place with the reason; the
     response still succeeds. `divergence` holds three estimates: linear (eigenvalue at the
     unloaded jig), fit (the study's 1/A against q extrapolation) and fold (where the branch
-    ends), each null with a reason when it does not exist.
+    ends), each null with a reason when it does not exist; `validity` says from which airspeed
+    on each finding about the points appears.
     """
     return await request.app.state.service.sweep(body)
