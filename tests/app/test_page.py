@@ -496,3 +496,120 @@ def test_docs_render_swagger_ui_offline(visit: Callable[..., Visit]) -> None:
     page.wait_for_selector(".live-responses-table .response-col_status >> text=200")
     assert tab.errors == []
     assert tab.outside() == []
+
+
+def test_trimming_to_a_weight_solves_for_the_angle_of_attack(visit: Callable[..., Visit]) -> None:
+    """Issue 14: the flight panel flies at an angle of attack or trimmed to a weight; the request
+    carries exactly one of them, and the trimmed answer's alpha is among the totals."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    assert page.is_checked("#flight-mode-alpha")
+    assert page.is_visible("#f-alpha") and not page.is_visible("#f-weight")
+    page.focus("#flight-mode-alpha")
+    page.keyboard.press("ArrowRight")  # a radio group: the keyboard moves the choice
+    assert page.is_checked("#flight-mode-weight")
+    assert page.is_visible("#f-weight") and page.is_visible("#f-load_factor")
+    assert not page.is_visible("#f-alpha")
+    assert "weight" in page.inner_text("#sweep legend")
+    page.fill("#f-velocity", "12")
+    page.fill("#f-weight", "300")
+    page.fill("#f-load_factor", "1")
+    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
+        before = tab.runs()
+        page.press("#f-weight", "Enter")
+        tab.wait_runs("solve", before)
+    flight = sent.value.post_data_json["flight"]
+    assert flight == {"velocity": 12, "weight": 300, "load_factor": 1, "density": 1.225}
+    assert tab.total("alpha") == "3.14 deg"  # the solver's 3.1436806542 deg
+    assert tab.total("lift") == "300.0 N"
+    assert tab.total("rigid_alpha") == "4.01 deg"
+    assert tab.total("lift_effectiveness") == "1.270"
+    assert page.locator('#totals [data-total="lift_amplification"]').count() == 0
+    assert "trimmed: alpha 3.14 deg" in page.inner_text("#totals-title")
+    # Back at an angle of attack the request carries alpha, not the weight.
+    page.check("#flight-mode-alpha")
+    page.fill("#f-velocity", "10")
+    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
+        before = tab.runs()
+        page.click("#solve-button")
+        tab.wait_runs("solve", before)
+    assert sent.value.post_data_json["flight"] == {"velocity": 10, "alpha": 5, "density": 1.225}
+    assert tab.total("lift") == "304.1 N"
+    assert page.locator('#totals [data-total="alpha"]').count() == 0
+    assert tab.errors == []
+
+
+def test_a_trimmed_sweep_draws_points_and_its_stability_limit(
+    visit: Callable[..., Visit],
+) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.check("#flight-mode-weight")
+    page.fill("#f-sweep_start", "6")
+    page.fill("#f-sweep_stop", "22")
+    page.fill("#f-sweep_count", "9")
+    with page.expect_request(lambda r: "/sweep" in r.url and r.method == "POST") as sent:
+        before = tab.runs()
+        page.click("#sweep-button")
+        tab.wait_runs("sweep", before)
+    flight = sent.value.post_data_json["flight"]
+    assert flight == {"weight": 300, "load_factor": 1, "density": 1.225}
+    figure = tab.figure("14.4")
+    assert figure["amplification"] == "lift_effectiveness"
+    speeds = figure["series"]["amplification"]["x"]
+    assert len(speeds) >= 5 and speeds[0] == 6
+    assert all(a is not None and a > 1 for a in figure["series"]["amplification"]["y"])
+    assert figure["marks"]["fold_kind"] == "trimmed_stability_limit"
+    assert "loses static stability" in page.inner_text("#sweep-note")
+    head = page.inner_text("#sweep-table thead")
+    assert "alpha [deg]" in head and "L / L_rigid" not in head
+    assert tab.errors == []
+
+
+def test_a_tube_spar_draws_its_stresses_and_the_laws_solve_as_before(
+    visit: Callable[..., Visit],
+) -> None:
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    assert page.get_attribute("#fig-stress", "hidden") is not None  # no spar, no stress figure
+    assert not page.is_visible("#f-spar_outer_diameter")
+    page.check("#stiffness-spar")
+    assert page.is_visible("#f-spar_outer_diameter") and not page.is_visible("#f-ei_k")
+    assert page.input_value("#f-spar_outer_diameter") == "0.05"
+    assert page.input_value("#f-spar_wall_thickness") == "0.002"
+    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
+        before = tab.runs()
+        page.press("#f-spar_wall_thickness", "Enter")
+        tab.wait_runs("solve", before)
+    body = sent.value.post_data_json
+    assert "bending_stiffness" not in body["wing"] and "torsional_stiffness" not in body["wing"]
+    assert body["wing"]["spar"]["outer_diameter"] == 0.05
+    assert body["wing"]["spar"]["material"]["yield_stress"] == 6e8
+    assert body["options"] == {"safety_factor": 1.5}
+    assert page.is_visible("#fig-stress")
+    stress = tab.figure("stress")
+    assert stress["state"] == "drawn"
+    for key in ("von_mises", "bending"):
+        assert len(stress["series"][key]["x"]) == len(stress["series"][key]["y"]) == 30, key
+    von_mises = stress["series"]["von_mises"]["y"]
+    assert max(von_mises) == pytest.approx(stress["marks"]["max_von_mises"])
+    assert 0 < max(von_mises) < stress["marks"]["allowable"] == pytest.approx(400)
+    assert tab.total("failure_margin").startswith("+") and "holds" in tab.total("failure_margin")
+    assert tab.total("spar_mass").endswith(" kg")
+    assert "MPa" in tab.total("max_von_mises_stress")
+    # Back to the EI/GJ laws: the study's wing, as before, and no stress figure.
+    page.check("#stiffness-laws")
+    assert page.is_visible("#f-ei_k")
+    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
+        before = tab.runs()
+        page.click("#solve-button")
+        tab.wait_runs("solve", before)
+    body = sent.value.post_data_json
+    assert "spar" not in body["wing"] and "options" not in body
+    assert tab.total("lift") == "304.1 N"
+    assert page.locator('#totals [data-total="failure_margin"]').count() == 0
+    assert not page.is_visible("#fig-stress")
+    assert tab.errors == []

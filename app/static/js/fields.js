@@ -68,11 +68,44 @@ export const STATION_COLUMNS = [
   { key: "torsional_stiffness", label: "GJ", unit: "N m^2" },
 ];
 
+// `flightMode`: shown and sent only when the flight panel's choice ("Fly at") is that mode: at an
+// angle of attack (FlightAtAlpha) or trimmed to carry a weight (FlightAtWeight, the angle of
+// attack solved for). A request carries exactly one of alpha and weight (+ load_factor).
+export const FLIGHT_MODES = [
+  ["alpha", "Angle of attack"],
+  ["weight", "Weight (trimmed)"],
+];
+
 export const FLIGHT_FIELDS = [
   { key: "velocity", path: "flight.velocity", label: "Airspeed", unit: "m/s", value: 10, solveOnly: true },
-  { key: "alpha", path: "flight.alpha", label: "Angle of attack", unit: "deg", value: 5 },
+  { key: "alpha", path: "flight.alpha", label: "Angle of attack", unit: "deg", value: 5, flightMode: "alpha" },
+  {
+    key: "weight",
+    path: "flight.weight",
+    label: "Weight",
+    unit: "N",
+    value: 300,
+    flightMode: "weight",
+  },
+  { key: "load_factor", path: "flight.load_factor", label: "Load factor", unit: "-", value: 1, flightMode: "weight" },
   { key: "density", path: "flight.density", label: "Air density", unit: "kg/m^3", value: 1.225 },
 ];
+
+// A circular tube spar (TubeSpar): EI and GJ follow from it instead of the EI/GJ laws or the
+// table's columns, and the answer adds stresses, failure margin and spar mass. Prefilled: a
+// carbon-fibre tube (SparMaterial's example numbers) that carries the study's wing at 10 m/s.
+export const SPAR_FIELDS = [
+  { key: "spar_outer_diameter", path: "wing.spar.outer_diameter", label: "Outer diameter D", unit: "m", value: 0.05 },
+  { key: "spar_wall_thickness", path: "wing.spar.wall_thickness", label: "Wall thickness t", unit: "m", value: 0.002 },
+  { key: "spar_youngs_modulus", path: "wing.spar.material.youngs_modulus", label: "Young's modulus E", unit: "Pa", value: 7e10 },
+  { key: "spar_shear_modulus", path: "wing.spar.material.shear_modulus", label: "Shear modulus G", unit: "Pa", value: 2.7e10 },
+  { key: "spar_yield_stress", path: "wing.spar.material.yield_stress", label: "Yield stress", unit: "Pa", value: 6e8 },
+  { key: "spar_density", path: "wing.spar.material.density", label: "Material density", unit: "kg/m^3", value: 1600 },
+  { key: "safety_factor", path: "options.safety_factor", label: "Safety factor", unit: "-", value: 1.5 },
+];
+
+// The planform fields that describe EI and GJ: not used (hidden) when the stiffness comes from the spar.
+export const STIFFNESS_LAW_KEYS = ["ei_law", "ei_k", "gj_law", "gj_k"];
 
 export const SWEEP_FIELDS = [
   { key: "sweep_start", path: "velocities.start", label: "From", unit: "m/s", value: 4 },
@@ -83,14 +116,12 @@ export const SWEEP_FIELDS = [
 // Fields later API versions may add. Each is shown only when the running server's OpenAPI
 // document (/openapi.json) has `property` in components.schemas[`schema`]; its description
 // there becomes the hint. A "column" field adds a column to the station table instead. A group
-// (e.g. a tube spar) is one entry per member with a nested path, e.g. { schema: "TubeSpar",
-// property: "outer_diameter", path: "wing.spar.outer_diameter", ... }: setPath builds the object.
+// is one entry per member with a nested path ("wing.<group>.<member>"): setPath builds the
+// object. (The tube spar has its own fields, SPAR_FIELDS, behind the "Stiffness from" choice.)
 export const OPTIONAL_FIELDS = [
   { key: "sweep_angle", schema: "Wing", property: "sweep", path: "wing.sweep", label: "Sweep", unit: "deg", value: 0 },
   { key: "airfoil", schema: "Wing", property: "airfoil", path: "wing.airfoil", label: "Airfoil", kind: "text", value: "" },
   { key: "jig_twist", schema: "Wing", property: "jig_twist", path: "wing.jig_twist", label: "jig twist", unit: "deg", kind: "column", value: 0 },
-  { key: "weight", schema: "Flight", property: "weight", path: "flight.weight", label: "Weight (trim)", unit: "N", value: "" },
-  { key: "load_factor", schema: "Flight", property: "load_factor", path: "flight.load_factor", label: "Load factor", unit: "-", value: 1 },
 ];
 
 let uid = 0;
@@ -134,6 +165,7 @@ export function renderField(field, parent, { form } = {}) {
   if (field.path) control.dataset.path = field.path;
   if (form) control.setAttribute("form", form);
   wrap.append(label, control);
+  if (field.flightMode) wrap.dataset.flightMode = field.flightMode;
   if (field.hint) {
     const hint = document.createElement("p");
     hint.className = "hint";

@@ -17,6 +17,16 @@ export const COLORS = {
   fit: "#5f6368",
   zero: "#b0b0b0",
   beyond: "#e65100",
+  vonMises: "#c62828",
+  bending: "#1565c0",
+  allowable: "#2e7d32",
+};
+
+/** What the sweep's amplification A is, by the fit's `amplification` kind. */
+export const AMPLIFICATION_WORDS = {
+  CL: "CL / CL_rigid, CL on the deformed area as the study computes it",
+  lift: "L / L_rigid",
+  lift_effectiveness: "the trimmed wing's lift effectiveness, its lift-curve slope over the rigid wing's",
 };
 
 /** What each code of a response's `validity` is called on the page (the API documents them). */
@@ -329,11 +339,57 @@ export function drawLoads(solution) {
   );
 }
 
+// ------------------------------------------------------------------------- spar stresses (14.3)
+
+/** Von Mises and bending stress in the tube spar along the span [MPa], with the allowable
+ * yield / safety factor; the registry records the drawn values (MPa). */
+export function drawStress(solution, yieldStress, safetyFactor) {
+  const { stations, totals } = solution;
+  const mpa = (values) => values.map((v) => v / 1e6);
+  const allowable = yieldStress / safetyFactor / 1e6;
+  const series = {
+    von_mises: { label: "von Mises", x: stations.y, y: mpa(stations.von_mises_stress) },
+    bending: { label: "bending (outer fibre)", x: stations.y, y: mpa(stations.bending_stress) },
+  };
+  const allowableLabel =
+    safetyFactor === 1 ? `yield ${fmt(allowable, 0)} MPa` : `allowable: yield / ${safetyFactor} = ${fmt(allowable, 0)} MPa`;
+  const top = Math.max(allowable, ...series.von_mises.y);
+  draw("chart-stress", {
+    title: "Spar stresses against the allowable",
+    datasets: [
+      line("von Mises", points(series.von_mises.x, series.von_mises.y), COLORS.vonMises),
+      line("bending (outer fibre)", points(series.bending.x, series.bending.y), COLORS.bending, { borderDash: [6, 4] }),
+      line(allowableLabel, points([0, stations.y.at(-1)], [allowable, allowable]), COLORS.allowable, { borderDash: [2, 3], borderWidth: 1.5 }),
+    ],
+    xTitle: "spanwise position y [m]",
+    yTitle: "stress [MPa]",
+    x: { min: 0 },
+    y: { beginAtZero: true, suggestedMax: 1.12 * top },
+    plugins: {
+      annotations: {
+        hlines: [{ y: 0 }],
+      },
+    },
+  });
+  record(
+    "stress",
+    series,
+    {
+      allowable,
+      max_von_mises: totals.max_von_mises_stress / 1e6,
+      failure_margin: totals.failure_margin,
+      spar_mass: totals.spar_mass,
+    },
+    { unit: "MPa", allowable_label: allowableLabel },
+  );
+}
+
 // ---------------------------------------------------------------------------------- figure 14.4
 
 /** The study's amplification A of a sweep point, as the fit defines it (fit.amplification). */
 export function amplification(equilibrium, kind) {
   const { totals } = equilibrium;
+  if (kind === "lift_effectiveness") return totals.lift_effectiveness ?? null;
   if (!totals.rigid_lift) return null;
   const ratio = totals.lift / totals.rigid_lift;
   return kind === "CL" ? (ratio * totals.reference_area) / totals.deformed_area : ratio;
@@ -354,6 +410,7 @@ export function drawSweep(sweep, density) {
     no_equilibrium: { label: "no equilibrium", x: failed.map((p) => p.velocity), y: failed.map(() => 0) },
   };
   const marks = {
+    fold_kind: fold.kind ?? "fold",
     fold_velocity: fold.velocity,
     linear_velocity: linear.velocity,
     fit_velocity: fit.velocity,
@@ -361,7 +418,13 @@ export function drawSweep(sweep, density) {
     fit_intercept: fit.intercept,
   };
   const vlines = [];
-  if (fold.velocity != null) vlines.push({ x: fold.velocity, label: `fold ${fmt(fold.velocity, 2)} m/s: equilibria end`, color: COLORS.fold });
+  const trimmedLimit = fold.kind === "trimmed_stability_limit";
+  if (fold.velocity != null) {
+    const label = trimmedLimit
+      ? `trimmed divergence ${fmt(fold.velocity, 2)} m/s: unstable beyond`
+      : `fold ${fmt(fold.velocity, 2)} m/s: equilibria end`;
+    vlines.push({ x: fold.velocity, label, color: COLORS.fold });
+  }
   if (linear.velocity != null) vlines.push({ x: linear.velocity, label: `linear divergence ${fmt(linear.velocity, 2)} m/s`, color: COLORS.linear, dash: [6, 4] });
   if (fit.velocity != null) vlines.push({ x: fit.velocity, label: `fit: V_div ${fmt(fit.velocity, 2)} m/s`, color: COLORS.fit, dash: [2, 3] });
   const regions = fold.velocity != null ? [{ from: fold.velocity, to: 1e9, color: "rgba(216, 67, 21, 0.07)" }] : [];
@@ -389,10 +452,10 @@ export function drawSweep(sweep, density) {
     plugins: { annotations: { vlines, regions, vlineLabels: false } },
   });
   draw("chart-amp", {
-    title: "Lift amplification follows the divergence law",
+    title: kind === "lift_effectiveness" ? "Lift effectiveness follows the divergence law" : "Lift amplification follows the divergence law",
     datasets: ampSets,
     xTitle: "airspeed V [m/s]",
-    yTitle: kind === "CL" ? "amplification CL / CL_rigid [-]" : "amplification L / L_rigid [-]",
+    yTitle: { CL: "amplification CL / CL_rigid [-]", lift_effectiveness: "lift effectiveness [-]" }[kind] ?? "amplification L / L_rigid [-]",
     x: speed,
     y: { min: 0 },
     pointLegend: true,

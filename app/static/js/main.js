@@ -7,6 +7,8 @@ import {
   FLIGHT_FIELDS,
   OPTIONAL_FIELDS,
   PLANFORM_FIELDS,
+  SPAR_FIELDS,
+  STIFFNESS_LAW_KEYS,
   SWEEP_FIELDS,
   controlValue,
   renderField,
@@ -20,6 +22,8 @@ const $ = (id) => document.getElementById(id);
 
 const state = {
   mode: "planform",
+  flightMode: "alpha", // "alpha" or "weight" (trimmed)
+  stiffness: "laws", // "laws" (EI, GJ from the table) or "spar"
   controls: {}, // key -> {field, control}
   extra: [], // optional fields this API version has: {field, control}
   passThrough: {}, // wing keys loaded from JSON that the editor does not know
@@ -87,6 +91,20 @@ function setMode(mode) {
 
 function wing() {
   const result = { ...state.passThrough, ...table.read() };
+  if (state.stiffness === "spar") {
+    // Stiffness or spar, not both: the tube gives EI and GJ.
+    delete result.bending_stiffness;
+    delete result.torsional_stiffness;
+    const spar = {};
+    for (const field of SPAR_FIELDS) {
+      if (field.path.startsWith("wing.")) setPath(spar, field.path, value(field.key));
+    }
+    result.spar = spar.wing.spar;
+  } else if (result.spar) {
+    // A spar loaded from JSON that the spar's fields cannot hold: sent as given, without EI, GJ.
+    delete result.bending_stiffness;
+    delete result.torsional_stiffness;
+  }
   for (const { field, control } of state.extra) {
     if (field.path?.startsWith("wing.") && field.kind !== "column") {
       const v = controlValue(control, field.kind);
@@ -100,6 +118,7 @@ function flight({ withVelocity }) {
   const result = {};
   for (const field of FLIGHT_FIELDS) {
     if (field.solveOnly && !withVelocity) continue;
+    if (field.flightMode && field.flightMode !== state.flightMode) continue;
     setPath(result, field.path, value(field.key));
   }
   for (const { field, control } of state.extra) {
@@ -111,20 +130,51 @@ function flight({ withVelocity }) {
   return result.flight;
 }
 
+/** Solver options the page sets: the safety factor of a spar's failure margin. */
+function withOptions(request) {
+  if (state.stiffness === "spar") setPath(request, "options.safety_factor", value("safety_factor"));
+  return request;
+}
+
 function solveRequest() {
-  return { wing: wing(), flight: flight({ withVelocity: true }) };
+  return withOptions({ wing: wing(), flight: flight({ withVelocity: true }) });
 }
 
 function sweepRequest() {
-  const request = { wing: wing(), flight: flight({ withVelocity: false }) };
+  const request = withOptions({ wing: wing(), flight: flight({ withVelocity: false }) });
   for (const field of SWEEP_FIELDS) setPath(request, field.path, value(field.key));
   return request;
+}
+
+/** The flight panel's choice: fly at an angle of attack, or trimmed to carry a weight. */
+function setFlightMode(mode) {
+  state.flightMode = mode;
+  $(`flight-mode-${mode}`).checked = true;
+  for (const wrap of $("flight").querySelectorAll(".field[data-flight-mode]")) {
+    wrap.hidden = wrap.dataset.flightMode !== mode;
+  }
+  $("sweep-same").textContent = mode === "weight" ? "weight, load factor" : "angle of attack";
+}
+
+/** Where EI and GJ come from: the laws (or the table's columns), or a tube spar. */
+function setStiffness(source) {
+  state.stiffness = source;
+  $(`stiffness-${source}`).checked = true;
+  const spar = source === "spar";
+  $("spar").hidden = !spar;
+  for (const key of STIFFNESS_LAW_KEYS) state.controls[key].control.closest(".field").hidden = spar;
+  $("stiffness-note").textContent = spar
+    ? "EI and GJ follow from the tube (the station table's EI and GJ columns are not sent); the results add its stresses, failure margin and mass."
+    : "";
 }
 
 /** Optional fields: shown when the running server's OpenAPI document has them. */
 async function addOptionalFields() {
   const doc = await api.openapi();
   const schemas = doc?.components?.schemas ?? {};
+  // Trim and the tube spar came with later API versions: offered when this one has them.
+  $("flight-mode").hidden = !schemas.FlightAtWeight;
+  $("stiffness-from").hidden = !schemas.TubeSpar;
   const stations = table.read(); // before a column is added: read() reads every column's cells
   let columns = false;
   for (const field of OPTIONAL_FIELDS) {
@@ -370,10 +420,18 @@ async function runSolve() {
 const f = (x, digits) => (x == null ? "n/a" : x.toFixed(digits));
 const signed = (x, digits) => (x == null ? "n/a" : `${x >= 0 ? "+" : ""}${x.toFixed(digits)}`);
 
+const trimmed = (r) => r.totals.lift_effectiveness != null;
+const withSpar = (r) => r.totals.failure_margin != null || r.totals.spar_mass != null;
+const MPa = (x) => (x == null ? "n/a" : `${(x / 1e6).toFixed(1)} MPa`);
+
+// [key, label, format, when]: a card is shown when `when` (if any) holds for the response.
 const TOTALS = [
+  ["alpha", "Angle of attack (trimmed)", (r) => `${f(r.totals.alpha, 2)} deg`, trimmed],
   ["lift", "Lift", (r) => `${f(r.totals.lift, 1)} N`],
-  ["rigid_lift", "Rigid lift (jig shape)", (r) => `${f(r.totals.rigid_lift, 1)} N`],
-  ["lift_amplification", "Lift amplification L / L_rigid", (r) => f(r.totals.lift_amplification, 3)],
+  ["rigid_alpha", "Rigid jig's alpha for this lift", (r) => `${f(r.totals.rigid_alpha, 2)} deg`, trimmed],
+  ["lift_effectiveness", "Lift effectiveness (flexible / rigid lift slope)", (r) => f(r.totals.lift_effectiveness, 3), trimmed],
+  ["rigid_lift", "Rigid lift (jig shape)", (r) => `${f(r.totals.rigid_lift, 1)} N`, (r) => !trimmed(r)],
+  ["lift_amplification", "Lift amplification L / L_rigid", (r) => f(r.totals.lift_amplification, 3), (r) => !trimmed(r)],
   ["tip_twist", "Tip twist (nose-up > 0)", (r) => `${signed(r.totals.tip_twist, 2)} deg`],
   ["tip_heave", "Tip heave", (r, w) => `${f(r.totals.tip_heave, 4)} m (${f((100 * r.totals.tip_heave) / w.y.at(-1), 1)} % of b/2)`],
   ["root_bending_moment", "Root bending moment", (r) => `${f(r.totals.root_bending_moment, 1)} N·m`],
@@ -382,13 +440,21 @@ const TOTALS = [
   ["divergence_velocity", "Linear divergence speed", (r) => `${f(r.stability.divergence_velocity, 2)} m/s`],
   ["CL", "CL (jig area)", (r) => f(r.totals.CL, 3)],
   ["induced_drag", "Induced drag", (r) => `${f(r.totals.induced_drag, 2)} N`],
+  [
+    "failure_margin",
+    "Spar failure margin (yield / (SF × von Mises) - 1)",
+    (r) => `${signed(r.totals.failure_margin, 2)} (${r.totals.failure_margin >= 0 ? "holds" : "YIELDS"})`,
+    withSpar,
+  ],
+  ["max_von_mises_stress", "Largest von Mises stress", (r) => `${MPa(r.totals.max_von_mises_stress)} at y = ${f(r.totals.max_von_mises_y, 2)} m`, withSpar],
+  ["spar_mass", "Spar mass (both halves)", (r) => `${f(r.totals.spar_mass, 2)} kg`, withSpar],
   ["solver", "Solver", (r) => `${r.solver.iterations} Newton iterations${r.solver.cached ? ", from the cache" : ""}`],
 ];
 
 function renderSolve() {
   const { request, response, rigid, rigidNote } = state.solve;
   $("totals").replaceChildren(
-    ...TOTALS.map(([key, label, format]) => {
+    ...TOTALS.filter(([, , , when]) => !when || when(response)).map(([key, label, format]) => {
       const item = document.createElement("div");
       item.dataset.total = key;
       const term = document.createElement("dt");
@@ -399,14 +465,37 @@ function renderSolve() {
       return item;
     }),
   );
-  const { velocity, alpha, density } = request.flight;
-  $("totals-condition").textContent = `${velocity} m/s, alpha ${alpha} deg, ${density} kg/m^3`;
+  const { velocity, alpha, weight, load_factor: n, density } = request.flight;
+  $("totals-condition").textContent =
+    weight !== undefined
+      ? `${velocity} m/s, weight ${weight} N${n !== undefined && n !== 1 ? ` × n ${n}` : ""} (trimmed: alpha ${f(response.totals.alpha, 2)} deg), ${density} kg/m^3`
+      : `${velocity} m/s, alpha ${alpha} deg, ${density} kg/m^3`;
   $("rigid-note").textContent = rigidNote;
   figures.drawSpanwise(response, rigid);
   figures.drawLoads(response);
+  renderStress(request, response);
   renderValidity(response);
   updateShapeChoices("solve");
   for (const id of ["download-json", "download-stations", "download-panels"]) $(id).disabled = false;
+}
+
+/** The spar's stresses under figure 14.3, when the answer has them; else the figure is hidden. */
+function renderStress(request, response) {
+  const spar = request.wing.spar;
+  if (!response.stations.von_mises_stress || !spar) {
+    figures.clear("stress");
+    $("fig-stress").hidden = true;
+    return;
+  }
+  $("fig-stress").hidden = false;
+  const safety = request.options?.safety_factor ?? 1;
+  figures.drawStress(response, spar.material.yield_stress, safety);
+  const t = response.totals;
+  $("stress-note").textContent =
+    `Tube D ${spar.outer_diameter} m, wall ${spar.wall_thickness} m: ${f(t.spar_mass, 2)} kg for both halves; ` +
+    `root bending stress ${MPa(t.root_bending_stress)}` +
+    (t.rigid_root_bending_stress != null ? ` (rigid jig: ${MPa(t.rigid_root_bending_stress)})` : "") +
+    `; failure margin ${signed(t.failure_margin, 2)} at safety factor ${safety}.`;
 }
 
 // ---------------------------------------------------------------------------------- validity
@@ -489,7 +578,9 @@ const SWEEP_COLUMNS = [
   ["V [m/s]", (p) => f(p.velocity, 2)],
   ["status", (p) => p.status.replace("_", " ")],
   ["lift [N]", (p) => f(p.equilibrium?.totals.lift, 1)],
-  ["L / L_rigid", (p) => f(p.equilibrium?.totals.lift_amplification, 3)],
+  ["L / L_rigid", (p) => f(p.equilibrium?.totals.lift_amplification, 3), "alpha"],
+  ["alpha [deg]", (p) => f(p.equilibrium?.totals.alpha, 2), "weight"],
+  ["lift effectiveness", (p) => f(p.equilibrium?.totals.lift_effectiveness, 3), "weight"],
   ["tip twist [deg]", (p) => signed(p.equilibrium?.totals.tip_twist, 2)],
   ["tip heave [m]", (p) => f(p.equilibrium?.totals.tip_heave, 3)],
   ["margin", (p) => f(p.equilibrium?.stability.margin, 3)],
@@ -499,21 +590,31 @@ const SWEEP_COLUMNS = [
 function renderSweep() {
   const { request, response } = state.sweep;
   const { fit, linear, fold } = response.divergence;
+  const mode = request.flight.weight !== undefined ? "weight" : "alpha";
+  const columns = SWEEP_COLUMNS.filter(([, , only]) => !only || only === mode);
   figures.drawSweep(response, request.flight.density);
   const notes = [];
   if (fit.velocity != null) {
     notes.push(
       `Dashed: the study's fit 1/A = ${f(fit.intercept, 3)} ${fit.slope < 0 ? "-" : "+"} ${Math.abs(fit.slope).toExponential(3)} q over ${fit.points_used} stable points ` +
-        `(A = ${fit.amplification === "CL" ? "CL / CL_rigid, CL on the deformed area as the study computes it" : "L / L_rigid"}), drawn to 92 % of its V_div ${f(fit.velocity, 2)} m/s.`,
+        `(A = ${figures.AMPLIFICATION_WORDS[fit.amplification] ?? fit.amplification}), drawn to 92 % of its V_div ${f(fit.velocity, 2)} m/s.`,
     );
   } else notes.push(`No fit: ${fit.reason}.`);
-  notes.push(fold.velocity != null ? `Equilibria end at the fold, ${f(fold.velocity, 2)} m/s (shaded beyond).` : `Fold: ${fold.reason}.`);
+  if (fold.kind === "trimmed_stability_limit") {
+    notes.push(
+      fold.velocity != null
+        ? `Trimmed divergence: at ${f(fold.lift, 1)} N the trimmed wing loses static stability at ${f(fold.velocity, 2)} m/s (shaded beyond: equilibria exist there but are unstable).`
+        : `Trimmed stability limit: ${fold.reason}.`,
+    );
+  } else {
+    notes.push(fold.velocity != null ? `Equilibria end at the fold, ${f(fold.velocity, 2)} m/s (shaded beyond).` : `Fold: ${fold.reason}.`);
+  }
   notes.push(linear.velocity != null ? `Linear divergence at the jig: ${f(linear.velocity, 2)} m/s.` : `Linear divergence: ${linear.reason}.`);
   $("sweep-note").textContent = notes.join(" ");
   const head = $("sweep-table").tHead;
   head.replaceChildren();
   const headRow = head.insertRow();
-  for (const [label] of SWEEP_COLUMNS) {
+  for (const [label] of columns) {
     const th = document.createElement("th");
     th.scope = "col";
     th.textContent = label;
@@ -524,7 +625,7 @@ function renderSweep() {
   for (const point of response.points) {
     const row = body.insertRow();
     row.dataset.status = point.status;
-    for (const [, format] of SWEEP_COLUMNS) row.insertCell().textContent = format(point);
+    for (const [, format] of columns) row.insertCell().textContent = format(point);
     if (point.no_equilibrium) row.title = point.no_equilibrium.reason;
     const findings = point.equilibrium?.validity ?? [];
     if (findings.length) {
@@ -612,6 +713,9 @@ function downloadStations() {
     ["bending_moment [N m]", s.bending_moment],
     ["torque [N m]", s.torque],
   ];
+  if (s.von_mises_stress) {
+    columns.push(["bending_stress [Pa]", s.bending_stress], ["shear_stress [Pa]", s.shear_stress], ["von_mises_stress [Pa]", s.von_mises_stress]);
+  }
   downloadText("flexwing-stations.csv", "text/csv", toCSV(columns));
 }
 
@@ -640,6 +744,7 @@ function downloadSweep() {
     ["lift [N]", total("lift")],
     ["rigid_lift [N]", total("rigid_lift")],
     ["lift_amplification [-]", total("lift_amplification")],
+    ["alpha [deg]", total("alpha")],
     [`amplification_${kind} [-]`, points.map((p) => (p.equilibrium ? figures.amplification(p.equilibrium, kind) : null))],
     ["tip_twist [deg]", total("tip_twist")],
     ["tip_heave [m]", total("tip_heave")],
@@ -677,6 +782,17 @@ function loadJSON(text) {
     return;
   }
   const known = new Set([...table.columns.map((c) => c.key), ...state.extra.map((e) => e.field.path?.replace("wing.", ""))]);
+  // A tube spar of one diameter and one wall thickness goes into the spar's fields; any other
+  // spar (per-station lists, a fraction of the thickness) is kept and sent as given.
+  const spar = w.spar;
+  const simpleSpar = spar && typeof spar.outer_diameter === "number" && typeof spar.wall_thickness === "number";
+  if (simpleSpar) {
+    known.add("spar");
+    for (const field of SPAR_FIELDS) {
+      if (field.path.startsWith("wing.")) setControl(field.key, field.path.split(".").slice(2).reduce((node, part) => node?.[part], spar));
+    }
+    setControl("safety_factor", body.options?.safety_factor);
+  }
   state.passThrough = Object.fromEntries(Object.entries(w).filter(([k]) => !known.has(k)));
   for (const { field, control } of state.extra) {
     const v = field.path?.split(".").reduce((node, part) => node?.[part], { wing: w, flight: body.flight });
@@ -686,9 +802,19 @@ function loadJSON(text) {
   table.fill(w);
   updateCount();
   const fl = body.flight ?? {};
+  setStiffness(simpleSpar ? "spar" : "laws");
   setControl("velocity", fl.velocity);
   setControl("alpha", fl.alpha);
   setControl("density", fl.density);
+  if (fl.weight !== undefined || fl.lift !== undefined) {
+    // Trimmed; a lift to carry is a weight at load factor +-1.
+    const lift = fl.lift;
+    setControl("weight", fl.weight ?? Math.abs(lift));
+    setControl("load_factor", fl.weight !== undefined ? (fl.load_factor ?? 1) : Math.sign(lift) || 1);
+    setFlightMode("weight");
+  } else if (fl.alpha !== undefined) {
+    setFlightMode("alpha");
+  }
   const v = body.velocities;
   if (Array.isArray(v) && v.length) {
     setControl("sweep_start", Math.min(...v));
@@ -728,6 +854,15 @@ function wire() {
   for (const radio of document.querySelectorAll('input[name="mode"]')) {
     radio.addEventListener("change", () => setMode(radio.value));
   }
+  for (const radio of document.querySelectorAll('input[name="flight-mode"]')) {
+    radio.addEventListener("change", () => setFlightMode(radio.value));
+  }
+  for (const radio of document.querySelectorAll('input[name="stiffness"]')) {
+    radio.addEventListener("change", () => {
+      delete state.passThrough.spar; // the user's choice replaces a spar loaded as given
+      setStiffness(radio.value);
+    });
+  }
   $("add-row").addEventListener("click", () => {
     setMode("table");
     table.addRow();
@@ -759,13 +894,17 @@ async function main() {
   render(PLANFORM_FIELDS, $("planform"));
   render(FLIGHT_FIELDS, $("flight"));
   render(SWEEP_FIELDS, $("sweep"), { form: "sweep-form" });
+  render(SPAR_FIELDS, $("spar"));
   for (const key of ["2", "3", "4", "5"]) figures.clear(`14.${key}`);
+  figures.clear("stress");
   wire();
   installKeyBox(async () => {
     await runSolve();
     await runSweep();
   });
   setMode("planform");
+  setFlightMode("alpha");
+  setStiffness("laws");
   await addOptionalFields();
   // The study's wing, solved and swept as the page opens.
   await runSolve();
