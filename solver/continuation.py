@@ -454,6 +454,8 @@ def _locate_fold(
         (s_low, f_low, w_low), (s_high, f_high, w_high) = low, high
         if abs(best.dq_ds) <= tracer.settings.fold_tolerance:
             break
+        if not s_high - s_low > 0:  # the bracket has no width left in floating point
+            break
         sigma = s_low - f_low * (s_high - s_low) / (f_high - f_low)
         fraction = (sigma - s_low) / (s_high - s_low)
         start = w_low + fraction * (w_high - w_low)

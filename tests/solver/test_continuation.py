@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from solver import FlightCondition, NoEquilibrium, Wing, solve
 from solver.branch import pressure_scale
 from solver.continuation import BranchTracer
 from solver.jig import jig
@@ -66,3 +67,123 @@ def test_the_hermite_start_lies_within_one_newton_step_of_the_branch(system):
     r0, r1 = system.residual(start)
     # O(ds^4) interpolation error: the residual there is small but not yet converged.
     assert np.max(np.abs(r0 + q * r1)) < 1e-3
+
+
+# Found by fuzzing (benchmarks/fuzz_benchmark.py, seed 1): locating this wing's fold, the regula
+# falsi's bracket lost all its width in floating point and the next trial divided by zero; the
+# request was answered "not converged" instead of "beyond the fold". The fold lies far below the
+# requested 19.5 m/s, so the outcome does not hang on round-off.
+_SOFT_TORSION_WING = dict(
+    y=[
+        0.0,
+        0.029177817187118562,
+        0.05810669952580521,
+        0.08653983599198287,
+        0.11423464509056369,
+        0.14095484447523324,
+        0.1664724668261184,
+        0.19056980478658175,
+        0.21304126836562656,
+        0.23369513895921137,
+        0.2523552050257814,
+        0.2688622654610106,
+        0.28307548784549125,
+        0.2948736099772799,
+        0.30415597443824893,
+        0.31084338736768685,
+        0.3148787941163951,
+        0.316227766016838,
+    ],
+    chord=[
+        1.0,
+        0.9756058192604785,
+        0.9514197610698808,
+        0.927648172348925,
+        0.9044938639109523,
+        0.8821543801515763,
+        0.8608203136695518,
+        0.8406736791979234,
+        0.8218863607184999,
+        0.8046186450083258,
+        0.7890178541294152,
+        0.7752170885288631,
+        0.7633340914727603,
+        0.753470244502163,
+        0.7457097024815298,
+        0.7401186756190905,
+        0.7367448645846951,
+        0.7356170535445167,
+    ],
+    elastic_axis=[
+        0.3783655271500469,
+        0.19825171784791623,
+        0.11358605110263822,
+        0.25,
+        0.6987791094627086,
+        0.22643717468999236,
+        0.07891383191124546,
+        0.4616259295241118,
+        0.31799429370002624,
+        0.6860528653192718,
+        0.18006554116353718,
+        0.05000000000000001,
+        0.5293164896464619,
+        0.2348149265829645,
+        0.6811232819527553,
+        0.3783655271500469,
+        0.0648987270960077,
+        0.49768614614575457,
+    ],
+    bending_stiffness=[
+        3008300.658046023,
+        377855.9368966219,
+        587508.2000470519,
+        587508.2000470519,
+        587508.3613254534,
+        5875083.613119256,
+        1044754.0221467053,
+        587508.3613119256,
+        566424.459512546,
+        82354.06206352643,
+        587508.3613119256,
+        2793000.989738237,
+        124365.45116695223,
+        587508.3613119256,
+        587508.3613119256,
+        169287.91383648725,
+        642717.1779291007,
+        587508.3613119256,
+    ],
+    torsional_stiffness=[
+        0.4008860409431095,
+        2.936453624066127,
+        1.7884740928568144,
+        7.982701315358857,
+        1.1727808742137231,
+        0.8016620421890874,
+        0.637877848641455,
+        4.422673768875449,
+        1.7556394054333968,
+        0.06303482490063382,
+        0.5427668081215467,
+        0.5158470406783666,
+        0.443338734050563,
+        0.386679932383093,
+        0.4146764589363579,
+        0.40541899250848873,
+        0.3998999519612162,
+        1.5571334076370578,
+    ],
+)
+
+
+def test_a_fold_whose_bracket_collapses_still_ends_the_branch(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setenv("FLEXWING_COMPILE", "0")  # an odd mesh size: no C compilation for it
+    wing = Wing.create(**{k: np.array(v) for k, v in _SOFT_TORSION_WING.items()})
+    flight = FlightCondition(19.504710329614248, -6.8773130332784, 0.9405306201215876)
+    with pytest.raises(NoEquilibrium) as raised:
+        solve(wing, flight)
+    # Nose-down alpha, soft torsion: the branch folds at 8.157 m/s (continuation, 95 evaluations).
+    assert raised.value.fold_velocity == pytest.approx(8.1568, rel=1e-4)
