@@ -222,12 +222,33 @@ def test_a_sweep_draws_the_amplification_curve_and_marks_the_fold(
         })).observe(results, {attributes: true, attributeFilter: ["aria-busy"]});
     }"""
     )
+    # ... and the progress bar's determinate value, as the job reports it.
+    page.evaluate(
+        """() => {
+        const bar = document.getElementById("progress");
+        window.__progress = [];
+        new MutationObserver(() => window.__progress.push({
+            value: bar.getAttribute("value"), max: bar.getAttribute("max"), hidden: bar.hidden,
+        })).observe(bar, {attributes: true});
+    }"""
+    )
+    sent: list[tuple[str, str]] = []
+    page.on("request", lambda r: sent.append((r.method, r.url.removeprefix(tab.origin))))
     before = tab.runs()
     page.press("#f-sweep_count", "Enter")  # Enter in a sweep field sweeps
     tab.wait_runs("sweep", before)
     assert tab.runs()["solve"] == before["solve"]
+    # Issue 14: the sweep runs as a job (POST /jobs, then GET /jobs/{id} until it ends).
+    assert ("POST", "/sweep") not in sent
+    assert sent[0] == ("POST", "/jobs")
+    polled = [url for method, url in sent if method == "GET" and url.startswith("/jobs/")]
+    assert polled and len(set(polled)) == 1
     busy = page.evaluate("window.__busy")
     assert busy[0] == {"busy": "true", "progress": True, "sweepDisabled": True}
+    progress = page.evaluate("window.__progress")
+    determinate = [p for p in progress if p["value"] is not None]
+    assert determinate and determinate[-1]["value"] == determinate[-1]["max"] == "9"
+    assert progress[-1]["hidden"] is True  # and the bar is gone once the sweep is drawn
     assert busy[-1]["busy"] is None and not page.is_disabled("#sweep-button")
 
     figure = tab.figure("14.4")
@@ -550,11 +571,12 @@ def test_a_trimmed_sweep_draws_points_and_its_stability_limit(
     page.fill("#f-sweep_start", "6")
     page.fill("#f-sweep_stop", "22")
     page.fill("#f-sweep_count", "9")
-    with page.expect_request(lambda r: "/sweep" in r.url and r.method == "POST") as sent:
+    with page.expect_request(lambda r: r.url.endswith("/jobs") and r.method == "POST") as sent:
         before = tab.runs()
         page.click("#sweep-button")
         tab.wait_runs("sweep", before)
-    flight = sent.value.post_data_json["flight"]
+    assert sent.value.post_data_json["operation"] == "sweep"
+    flight = sent.value.post_data_json["request"]["flight"]
     assert flight == {"weight": 300, "load_factor": 1, "density": 1.225}
     figure = tab.figure("14.4")
     assert figure["amplification"] == "lift_effectiveness"
@@ -613,3 +635,102 @@ def test_a_tube_spar_draws_its_stresses_and_the_laws_solve_as_before(
     assert page.locator('#totals [data-total="failure_margin"]').count() == 0
     assert not page.is_visible("#fig-stress")
     assert tab.errors == []
+
+
+def test_a_negative_chord_in_a_sweep_is_reported_next_to_its_cell(
+    visit: Callable[..., Visit],
+) -> None:
+    """The job's 422 names `request.wing.chord[3]`; the page marks the sweep's input."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#stations-details summary")
+    cell = page.locator("#cell-chord-3")
+    cell.fill("-0.5")
+    before = tab.runs()
+    with page.expect_response(lambda r: r.url.endswith("/jobs")) as answered:
+        page.click("#sweep-button")
+        tab.wait_runs("failed", before)
+    assert answered.value.status == 422
+    assert cell.get_attribute("aria-invalid") == "true"
+    error = page.locator(f"#{cell.get_attribute('aria-describedby')}")
+    assert "greater than or equal to 0.001" in error.inner_text()
+    problem = page.inner_text("#problem")
+    assert "Check the highlighted inputs" in problem and "wing.chord[3]" in problem
+    assert "request.wing" not in problem
+    assert page.locator("[aria-invalid=true]").count() == 1
+    assert page.inner_text("#status-text") == "Sweep failed."
+    assert tab.errors_but(422) == []
+
+
+def test_cancelling_a_sweep_cancels_its_job_and_leaves_the_page_usable(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """The job's GET is answered "running, 7 of 50" by the test (page.route) for as long as the
+    page asks, so Cancel always finds the sweep running: no race with the real job's speed."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    jobs: list[str] = []
+
+    def running(route: Any) -> None:
+        if route.request.method != "GET":
+            route.continue_()
+            return
+        job_id = route.request.url.rsplit("/", 1)[1]
+        jobs.append(job_id)
+        body = {
+            "id": job_id,
+            "operation": "sweep",
+            "status": "running",
+            "progress": {"done": 7, "total": 50, "problems": 0},
+        }
+        route.fulfill(status=200, content_type="application/json", body=json.dumps(body))
+
+    page.route("**/jobs/*", running)
+    page.fill("#f-sweep_count", "50")
+    before = tab.runs()
+    page.click("#sweep-button")
+    page.wait_for_function(
+        "() => { const bar = document.getElementById('progress');"
+        " return !bar.hidden && bar.max === 50 && bar.value === 7; }"
+    )
+    assert page.is_visible("#cancel") and page.is_disabled("#sweep-button")
+    assert "7 of 50" in page.inner_text("#status-text")
+    with page.expect_request(lambda r: r.method == "DELETE") as deleted:
+        page.click("#cancel")
+        tab.wait_runs("failed", before)
+    assert deleted.value.url.endswith(f"/jobs/{jobs[0]}")
+    assert page.inner_text("#status-text") == "Sweep cancelled."
+    assert not page.is_visible("#progress") and not page.is_visible("#cancel")
+    assert tab.runs()["sweep"] == before["sweep"]
+    # The job was cancelled, or had finished before the DELETE came (a finished job stays so).
+    job = httpx.get(f"{server.base_url}/jobs/{jobs[0]}").json()
+    assert job["status"] in {"cancelled", "succeeded"}
+    # The page is usable: the next sweep (answered for real) is drawn.
+    page.unroute("**/jobs/*")
+    page.fill("#f-sweep_count", "9")
+    before = tab.runs()
+    page.click("#sweep-button")
+    tab.wait_runs("sweep", before)
+    assert len(tab.figure("14.4")["series"]["amplification"]["x"]) == 8
+    assert tab.errors == []
+
+
+def test_a_trimmed_flight_without_equilibrium_says_why(visit: Callable[..., Visit]) -> None:
+    """A weight the wing cannot carry is not a divergence: the page shows the solver's reason."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.check("#flight-mode-weight")
+    page.fill("#f-velocity", "4.5")  # 300 N needs 31.2 deg of the rigid wing (tests/solver)
+    page.fill("#f-weight", "300")
+    before = tab.runs()
+    page.press("#f-weight", "Enter")
+    tab.wait_runs("failed", before)
+    problem = page.inner_text("#problem")
+    assert "No equilibrium at 4.5 m/s" in problem
+    assert "diverges" not in problem
+    assert "needs alpha = 31.2" in problem and "beyond +-30 deg" in problem
+    assert page.get_attribute("#problem", "data-type") == "/problems/no-equilibrium"
+    assert tab.errors_but(422) == []

@@ -12,17 +12,17 @@ export class ProblemError extends Error {
   }
 }
 
-async function postJSON(path, body, { signal } = {}) {
+async function call(method, path, { body, signal } = {}) {
   let response;
   try {
     response = await fetch(new URL(path, document.baseURI), {
-      method: "POST",
+      method,
       headers: {
-        "content-type": "application/json",
+        ...(body === undefined ? {} : { "content-type": "application/json" }),
         accept: "application/json, application/problem+json",
         ...authorization(),
       },
-      body: JSON.stringify(body),
+      body: body === undefined ? undefined : JSON.stringify(body),
       signal,
     });
   } catch (error) {
@@ -46,32 +46,87 @@ async function postJSON(path, body, { signal } = {}) {
   return data;
 }
 
+function postJSON(path, body, { signal } = {}) {
+  return call("POST", path, { body, signal });
+}
+
 /** POST /solve: one equilibrium. */
 export function solve(request, options) {
   return postJSON("solve", request, options);
 }
 
+/** How often a running job is asked for its state [ms]. */
+const POLL_MS = 200;
+
+/** Wait `ms`, or reject as an abort does when `signal` aborts first. */
+function pause(ms, signal) {
+  return new Promise((resolve, reject) => {
+    const aborted = () => {
+      clearTimeout(timer);
+      reject(new DOMException("The sweep was cancelled.", "AbortError"));
+    };
+    const timer = setTimeout(() => {
+      signal?.removeEventListener("abort", aborted);
+      resolve();
+    }, ms);
+    signal?.addEventListener("abort", aborted, { once: true });
+  });
+}
+
+/** Map a job's field paths (`request.wing.chord[2]`) to the /sweep body's (`wing.chord[2]`). */
+function fromJobRequest(error) {
+  const errors = error.problem?.errors;
+  if (errors?.length) {
+    error.problem.errors = errors.map((e) => ({ ...e, field: String(e.field ?? "").replace(/^request\./, "") }));
+  }
+  return error;
+}
+
 /**
- * A sweep over airspeeds, reporting progress through `onProgress({done, total, message})`.
+ * A sweep over airspeeds as a job, reporting progress through `onProgress({done, total, message})`.
  *
- * Today this is one POST /sweep: progress is reported at the start ({done: 0, total}) and the end
- * ({done: total}), and the page shows an indeterminate busy state in between. This function is the
- * seam for long work: when the API gains jobs (POST /jobs answering with the job's URL, progress
- * as server-sent events), only its body changes, e.g.
- *
- *     const job = await postJSON("jobs", { kind: "sweep", request }, { signal });
- *     const events = new EventSource(new URL(job.events, document.baseURI));
- *     events.addEventListener("progress", (e) => onProgress(JSON.parse(e.data)));
- *     ... resolve with the "done" event's result, close `events` on abort ...
- *
- * and the page already draws a determinate bar from `done` and `total`. Cancelling aborts `signal`.
+ * POST /jobs submits `{operation: "sweep", request}` (a bad body is its 422 here, a full queue
+ * its 503: both thrown as `ProblemError`, field paths stripped of `request.` so they name the
+ * sweep's inputs); then GET jobs/{id} every POLL_MS, with the tab's API key (an EventSource could
+ * not send it), reporting the job's `progress` until it ends. Resolves with the job's `result`
+ * (what POST /sweep answers); a failed job throws its `problem` (what /sweep would have answered)
+ * as a `ProblemError`. Aborting `signal` (the page's Cancel) sends DELETE jobs/{id}, best effort,
+ * and rejects with an AbortError, as an aborted fetch does.
  */
 export async function runSweep(request, { signal, onProgress } = {}) {
-  const total = request.velocities?.count ?? request.velocities?.length ?? 0;
-  onProgress?.({ done: 0, total, message: `Solving ${total} airspeeds and tracing the fold` });
-  const result = await postJSON("sweep", request, { signal });
-  onProgress?.({ done: total, total, message: "Done" });
-  return result;
+  const count = request.velocities?.count ?? request.velocities?.length ?? 0;
+  onProgress?.({ done: 0, total: count, message: `Submitting ${count} airspeeds` });
+  let job;
+  try {
+    job = await postJSON("jobs", { operation: "sweep", request }, { signal });
+  } catch (error) {
+    throw error instanceof ProblemError ? fromJobRequest(error) : error;
+  }
+  const url = `jobs/${encodeURIComponent(job.id)}`;
+  const cancel = () => call("DELETE", url).catch(() => {}); // best effort: the page moves on
+  signal?.addEventListener("abort", cancel, { once: true });
+  try {
+    for (let polls = 0; ; polls++) {
+      signal?.throwIfAborted();
+      const { done, total } = job.progress ?? { done: 0, total: count };
+      if (job.status === "succeeded") {
+        onProgress?.({ done: total, total, message: "Done" });
+        return job.result;
+      }
+      if (job.status === "failed") {
+        throw new ProblemError(job.problem?.status ?? 500, job.problem ?? { title: "The sweep failed" });
+      }
+      if (job.status === "cancelled") {
+        throw new DOMException("The sweep was cancelled.", "AbortError");
+      }
+      const doing = job.status === "queued" ? "Queued" : "Solving";
+      onProgress?.({ done, total, message: `${doing}: ${done} of ${total} airspeeds` });
+      await pause(polls ? POLL_MS : POLL_MS / 4, signal); // a short sweep is often done at once
+      job = await call("GET", url, { signal });
+    }
+  } finally {
+    signal?.removeEventListener("abort", cancel);
+  }
 }
 
 /** The running server's OpenAPI document (which fields this API version has), or null. */

@@ -290,6 +290,11 @@ function plainProblem(error, velocity) {
   if (type.endsWith("/no-equilibrium")) {
     const v = p.velocity ?? velocity;
     const fold = p.fold_velocity;
+    // Trimmed flight (a weight to carry) has its own reasons, which the solver words best: the lift
+    // needs more than the largest angle of attack, or the trimmed branch turns back.
+    if (/trim|alpha =|any angle of attack/i.test(p.detail ?? "")) {
+      return { title: `No equilibrium at ${v} m/s`, text: p.detail };
+    }
     return {
       title: `No equilibrium at ${v} m/s`,
       text:
