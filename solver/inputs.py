@@ -276,6 +276,26 @@ class Wing:
         return np.array([line.at(x) for line in self.camber])
 
 
+def _check_airspeed(condition: FlightCondition | TrimCondition, other: str) -> None:
+    """What every flight condition needs: velocity, `other` and density finite numbers, velocity
+    and density positive, and a positive, finite dynamic pressure."""
+    for name in ("velocity", other, "density"):
+        value = getattr(condition, name)
+        if not _is_number(value):
+            raise InvalidInput(name, "must be a number")
+        if not math.isfinite(value):
+            raise InvalidInput(name, "must be a finite number")
+    if condition.velocity <= 0:
+        raise InvalidInput("velocity", "must be positive")
+    if condition.density <= 0:
+        raise InvalidInput("density", "must be positive")
+    q = condition.dynamic_pressure
+    if not (math.isfinite(q) and q > 0):
+        raise InvalidInput(
+            "velocity", f"the dynamic pressure rho V^2 / 2 = {q:g} Pa is not a positive number"
+        )
+
+
 @dataclass(frozen=True)
 class FlightCondition:
     """Steady, symmetric flight.
@@ -292,23 +312,9 @@ class FlightCondition:
     density: float = ISA_SEA_LEVEL_DENSITY
 
     def __post_init__(self) -> None:
-        for name in ("velocity", "alpha", "density"):
-            value = getattr(self, name)
-            if not _is_number(value):
-                raise InvalidInput(name, "must be a number")
-            if not math.isfinite(value):
-                raise InvalidInput(name, "must be a finite number")
-        if self.velocity <= 0:
-            raise InvalidInput("velocity", "must be positive")
-        if self.density <= 0:
-            raise InvalidInput("density", "must be positive")
+        _check_airspeed(self, "alpha")
         if not -90.0 < self.alpha < 90.0:
             raise InvalidInput("alpha", "must lie strictly between -90 and 90 degrees")
-        q = self.dynamic_pressure
-        if not (math.isfinite(q) and q > 0):
-            raise InvalidInput(
-                "velocity", f"the dynamic pressure rho V^2 / 2 = {q:g} Pa is not a positive number"
-            )
 
     @property
     def dynamic_pressure(self) -> float:
@@ -339,30 +345,16 @@ class TrimCondition:
     density: float = ISA_SEA_LEVEL_DENSITY
 
     def __post_init__(self) -> None:
-        for name in ("velocity", "lift", "density"):
-            value = getattr(self, name)
-            if not _is_number(value):
-                raise InvalidInput(name, "must be a number")
-            if not math.isfinite(value):
-                raise InvalidInput(name, "must be a finite number")
-        if self.velocity <= 0:
-            raise InvalidInput("velocity", "must be positive")
-        if self.density <= 0:
-            raise InvalidInput("density", "must be positive")
+        _check_airspeed(self, "lift")
         if self.lift == 0:
             raise InvalidInput(
                 "lift", "must be nonzero (zero lift is the jig at its zero-lift alpha)"
-            )
-        q = self.dynamic_pressure
-        if not (math.isfinite(q) and q > 0):
-            raise InvalidInput(
-                "velocity", f"the dynamic pressure rho V^2 / 2 = {q:g} Pa is not a positive number"
             )
 
     @property
     def dynamic_pressure(self) -> float:
         """q = rho V^2 / 2 [Pa]."""
-        return 0.5 * self.density * self.velocity * self.velocity
+        return 0.5 * self.density * self.velocity * self.velocity  # inf, not OverflowError
 
     def at_velocity(self, velocity: float) -> TrimCondition:
         return TrimCondition(velocity=velocity, lift=self.lift, density=self.density)

@@ -17,6 +17,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from solver.errors import ConvergenceError, NoEquilibrium, SolverError
 from solver.evaluation import Evaluation
 from solver.inputs import FlightCondition, SolverOptions, Wing
 
@@ -441,6 +442,15 @@ class SweepPoint:
     )
     equilibrium: Equilibrium | None = quantity("", "the equilibrium, as /solve returns it")
     no_equilibrium: PointFailure | None = quantity("", "why there is none")
+
+    @classmethod
+    def failed(cls, velocity: float, error: SolverError) -> SweepPoint:
+        """The point at `velocity` [m/s] where the solver answered with `error`."""
+        fold_velocity = error.fold_velocity if isinstance(error, NoEquilibrium) else None
+        status: Literal["no_equilibrium", "not_converged"] = (
+            "not_converged" if isinstance(error, ConvergenceError) else "no_equilibrium"
+        )
+        return cls(error, velocity, status, None, PointFailure(str(error), fold_velocity))
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from typing import Literal
 
 from solver.branch import fold, search_velocity_limit
 from solver.divergence import fit_divergence, linear_divergence
@@ -16,7 +15,6 @@ from solver.recovery import from_branch
 from solver.results import (
     DivergenceSummary,
     Fold,
-    PointFailure,
     SweepInfo,
     SweepPoint,
     SweepResult,
@@ -66,7 +64,7 @@ def sweep(
                 else:
                     equilibrium = from_branch(system, flight, options, 0, velocity_limit=limit)
         except SolverError as error:
-            points.append(_failed(velocity, error))
+            points.append(SweepPoint.failed(velocity, error))
             continue
         points.append(SweepPoint(None, velocity, "equilibrium", equilibrium, None))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
@@ -78,11 +76,3 @@ def sweep(
     return SweepResult(
         points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)
     )
-
-
-def _failed(velocity: float, error: SolverError) -> SweepPoint:
-    fold_velocity = error.fold_velocity if isinstance(error, NoEquilibrium) else None
-    status: Literal["no_equilibrium", "not_converged"] = (
-        "not_converged" if isinstance(error, ConvergenceError) else "no_equilibrium"
-    )
-    return SweepPoint(error, velocity, status, None, PointFailure(str(error), fold_velocity))

@@ -51,7 +51,6 @@ from solver.results import (
     DivergenceSummary,
     Equilibrium,
     Fold,
-    PointFailure,
     SweepInfo,
     SweepPoint,
     SweepResult,
@@ -419,7 +418,7 @@ def trim_sweep(
                 point = _trimmed_point(wing, condition, options)
                 equilibrium = _answer(point, condition, options, time.perf_counter())
         except SolverError as error:
-            points.append(_failed(velocity, error))
+            points.append(SweepPoint.failed(velocity, error))
             continue
         points.append(SweepPoint(None, velocity, "equilibrium", equilibrium, None))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
@@ -431,11 +430,3 @@ def trim_sweep(
     return SweepResult(
         points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)
     )
-
-
-def _failed(velocity: float, error: SolverError) -> SweepPoint:
-    fold_velocity = error.fold_velocity if isinstance(error, NoEquilibrium) else None
-    status: Literal["no_equilibrium", "not_converged"] = (
-        "not_converged" if isinstance(error, ConvergenceError) else "no_equilibrium"
-    )
-    return SweepPoint(error, velocity, status, None, PointFailure(str(error), fold_velocity))
