@@ -88,6 +88,33 @@ class Service:
         self.metrics.cache.labels("result", "miss" if hit is None else "hit").inc()
         return hit
 
+    async def _answer(
+        self,
+        kind: str,
+        key: tuple[Any, ...],
+        run: Callable[[Any], worker.SolveOutcome],
+        job: Any,
+        timeout: float,
+        answered: str,
+        from_cache: Callable[[Payload], Payload] = _cached,
+    ) -> Payload:
+        """One answer or its problem, from the result cache (`from_cache` marks it so) or the
+        pool (and then cached); `answered` labels the solves metric of a success."""
+        hit = self._lookup(key)
+        if isinstance(hit, worker.Failure):
+            raise _failure_problem(hit)
+        if hit is not None:
+            return from_cache(hit)
+        outcome = await self._run(run, job, timeout, kind)
+        if outcome.failure is not None:
+            self.metrics.solves.labels(kind, outcome.failure.kind).inc()
+            self.results.put(key, outcome.failure)
+            raise _failure_problem(outcome.failure)
+        assert outcome.payload is not None
+        self.metrics.solves.labels(kind, answered).inc()
+        self.results.put(key, outcome.payload)
+        return outcome.payload
+
     async def solve(self, request: SolveRequest) -> Payload:
         inputs = solve_input(request, self.settings)
         flight = inputs.flight
@@ -99,21 +126,10 @@ class Service:
             dataclasses.astuple(inputs.options),
             None if inputs.initial_guess is None else inputs.initial_guess.tobytes(),
         )
-        hit = self._lookup(key)
-        if isinstance(hit, worker.Failure):
-            raise _failure_problem(hit)
-        if hit is not None:
-            return _cached(hit)
         job = worker.SolveJob(inputs.wing, flight, inputs.options, inputs.initial_guess)
-        outcome = await self._run(worker.run_solve, job, self.settings.solve_timeout, "solve")
-        if outcome.failure is not None:
-            self.metrics.solves.labels("solve", outcome.failure.kind).inc()
-            self.results.put(key, outcome.failure)
-            raise _failure_problem(outcome.failure)
-        assert outcome.payload is not None
-        self.metrics.solves.labels("solve", "equilibrium").inc()
-        self.results.put(key, outcome.payload)
-        return outcome.payload
+        return await self._answer(
+            "solve", key, worker.run_solve, job, self.settings.solve_timeout, "equilibrium"
+        )
 
     async def sweep(self, request: SweepRequest) -> Payload:
         inputs = sweep_input(request, self.settings)
@@ -150,19 +166,9 @@ class Service:
             dataclasses.astuple(inputs.problem),
             dataclasses.astuple(inputs.options),
         )
-        hit = self._lookup(key)
-        if isinstance(hit, worker.Failure):
-            raise _failure_problem(hit)
-        if hit is not None:
-            return hit
         job = worker.OptimizeJob(inputs.wing, inputs.problem, inputs.options)
         timeout = self.settings.optimize_timeout
-        outcome = await self._run(worker.run_optimize, job, timeout, "optimize")
-        if outcome.failure is not None:
-            self.metrics.solves.labels("optimize", outcome.failure.kind).inc()
-            self.results.put(key, outcome.failure)
-            raise _failure_problem(outcome.failure)
-        assert outcome.payload is not None
-        self.metrics.solves.labels("optimize", "optimum").inc()
-        self.results.put(key, outcome.payload)
-        return outcome.payload
+        # An optimum has no `solver` block to say it came from the cache: it is returned as is.
+        return await self._answer(
+            "optimize", key, worker.run_optimize, job, timeout, "optimum", lambda hit: hit
+        )
