@@ -87,6 +87,18 @@ class Visit:
     def total(self, key: str) -> str:
         return self.page.inner_text(f'#totals [data-total="{key}"] dd')
 
+    def solved(self, press: str | None = None) -> dict[str, Any]:
+        """Solve (Enter in the field `press`, else the Solve button) and wait for the answer;
+        returns the /solve request body the page sent."""
+        with self.page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
+            before = self.runs()
+            if press is None:
+                self.page.click("#solve-button")
+            else:
+                self.page.press(press, "Enter")
+            self.wait_runs("solve", before)
+        return dict(sent.value.post_data_json)
+
     def wait_runs(self, kind: str, before: dict[str, int]) -> None:
         """Wait until one more run of `kind` ("solve", "sweep" or "failed") has finished."""
         self.page.wait_for_function(
@@ -536,11 +548,8 @@ def test_trimming_to_a_weight_solves_for_the_angle_of_attack(visit: Callable[...
     page.fill("#f-velocity", "12")
     page.fill("#f-weight", "300")
     page.fill("#f-load_factor", "1")
-    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
-        before = tab.runs()
-        page.press("#f-weight", "Enter")
-        tab.wait_runs("solve", before)
-    flight = sent.value.post_data_json["flight"]
+    body = tab.solved("#f-weight")
+    flight = body["flight"]
     assert flight == {"velocity": 12, "weight": 300, "load_factor": 1, "density": 1.225}
     assert tab.total("alpha") == "3.14 deg"  # the solver's 3.1436806542 deg
     assert tab.total("lift") == "300.0 N"
@@ -551,11 +560,8 @@ def test_trimming_to_a_weight_solves_for_the_angle_of_attack(visit: Callable[...
     # Back at an angle of attack the request carries alpha, not the weight.
     page.check("#flight-mode-alpha")
     page.fill("#f-velocity", "10")
-    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
-        before = tab.runs()
-        page.click("#solve-button")
-        tab.wait_runs("solve", before)
-    assert sent.value.post_data_json["flight"] == {"velocity": 10, "alpha": 5, "density": 1.225}
+    body = tab.solved()
+    assert body["flight"] == {"velocity": 10, "alpha": 5, "density": 1.225}
     assert tab.total("lift") == "304.1 N"
     assert page.locator('#totals [data-total="alpha"]').count() == 0
     assert tab.errors == []
@@ -602,11 +608,7 @@ def test_a_tube_spar_draws_its_stresses_and_the_laws_solve_as_before(
     assert page.is_visible("#f-spar_outer_diameter") and not page.is_visible("#f-ei_k")
     assert page.input_value("#f-spar_outer_diameter") == "0.05"
     assert page.input_value("#f-spar_wall_thickness") == "0.002"
-    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
-        before = tab.runs()
-        page.press("#f-spar_wall_thickness", "Enter")
-        tab.wait_runs("solve", before)
-    body = sent.value.post_data_json
+    body = tab.solved("#f-spar_wall_thickness")
     assert "bending_stiffness" not in body["wing"] and "torsional_stiffness" not in body["wing"]
     assert body["wing"]["spar"]["outer_diameter"] == 0.05
     assert body["wing"]["spar"]["material"]["yield_stress"] == 6e8
@@ -625,11 +627,7 @@ def test_a_tube_spar_draws_its_stresses_and_the_laws_solve_as_before(
     # Back to the EI/GJ laws: the study's wing, as before, and no stress figure.
     page.check("#stiffness-laws")
     assert page.is_visible("#f-ei_k")
-    with page.expect_request(lambda r: r.url.endswith("/solve")) as sent:
-        before = tab.runs()
-        page.click("#solve-button")
-        tab.wait_runs("solve", before)
-    body = sent.value.post_data_json
+    body = tab.solved()
     assert "spar" not in body["wing"] and "options" not in body
     assert tab.total("lift") == "304.1 N"
     assert page.locator('#totals [data-total="failure_margin"]').count() == 0
