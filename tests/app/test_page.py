@@ -10,6 +10,7 @@ strings, to Playwright (a string predicate is evaluated with eval, which the pol
 
 from __future__ import annotations
 
+import contextlib
 import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -121,9 +122,11 @@ def browser() -> Iterator[Browser]:
         browser.close()
 
 
-@pytest.fixture
-def visit(browser: Browser, server: Server) -> Iterator[Callable[..., Visit]]:
-    """Open a path of the server in a fresh context (own cache and storage) at a viewport size."""
+@contextlib.contextmanager
+def visits(browser: Browser, base_url: str) -> Iterator[Callable[..., Visit]]:
+    """Open paths of the server at `base_url`, each in a fresh context (own cache and storage)
+    at a viewport size, recording console errors and every request; the page itself must load
+    with 200 (it needs no key)."""
     contexts = []
 
     def open_(path: str = "/", viewport: dict[str, int] = DESKTOP, **wait: Any) -> Visit:
@@ -131,7 +134,7 @@ def visit(browser: Browser, server: Server) -> Iterator[Callable[..., Visit]]:
         context.set_default_timeout(TIMEOUT_MS)
         contexts.append(context)
         page = context.new_page()
-        tab = Visit(page, server.base_url)
+        tab = Visit(page, base_url)
 
         def console(message: ConsoleMessage) -> None:
             if message.type == "error":
@@ -143,13 +146,21 @@ def visit(browser: Browser, server: Server) -> Iterator[Callable[..., Visit]]:
         context.on("request", request)
         page.on("console", console)
         page.on("pageerror", lambda error: tab.errors.append(f"page error: {error}"))
-        response = page.goto(server.base_url + path, **wait)
+        response = page.goto(base_url + path, **wait)
         assert response is not None and response.status == 200
         return tab
 
-    yield open_
-    for context in contexts:
-        context.close()
+    try:
+        yield open_
+    finally:
+        for context in contexts:
+            context.close()
+
+
+@pytest.fixture
+def visit(browser: Browser, server: Server) -> Iterator[Callable[..., Visit]]:
+    with visits(browser, server.base_url) as open_:
+        yield open_
 
 
 def test_page_loads_clean_and_draws_every_figure(visit: Callable[..., Visit]) -> None:

@@ -6,14 +6,13 @@ from elsewhere. (tests/app/test_page.py drives the page without keys.)"""
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from typing import Any
 
 import pytest
-from playwright.sync_api import Browser, ConsoleMessage, Request
+from playwright.sync_api import Browser
 
 from app.keys import add_key
 from tests.app.conftest import Server
-from tests.app.test_page import DESKTOP, TIMEOUT_MS, Visit, browser, pytestmark
+from tests.app.test_page import Visit, browser, pytestmark, visits
 
 __all__ = ["browser", "pytestmark"]  # the fixture and the marks of tests/app/test_page.py
 
@@ -45,32 +44,8 @@ def keyed_server(
 @pytest.fixture
 def visit(browser: Browser, keyed_server: Server) -> Iterator[Callable[..., Visit]]:
     """A path of the keyed server in a fresh browser context (own storage)."""
-    contexts = []
-
-    def open_(path: str = "/", **wait: Any) -> Visit:
-        context = browser.new_context(viewport=DESKTOP)
-        context.set_default_timeout(TIMEOUT_MS)
-        contexts.append(context)
-        page = context.new_page()
-        tab = Visit(page, keyed_server.base_url)
-
-        def console(message: ConsoleMessage) -> None:
-            if message.type == "error":
-                tab.errors.append(f"console: {message.text} at {message.location}")
-
-        def request(r: Request) -> None:
-            tab.requests.append(r.url)
-
-        context.on("request", request)
-        page.on("console", console)
-        page.on("pageerror", lambda error: tab.errors.append(f"page error: {error}"))
-        response = page.goto(keyed_server.base_url + path, **wait)
-        assert response is not None and response.status == 200  # the page needs no key
-        return tab
-
-    yield open_
-    for context in contexts:
-        context.close()
+    with visits(browser, keyed_server.base_url) as open_:
+        yield open_
 
 
 def test_the_page_asks_for_a_key_and_works_with_the_right_one(
