@@ -53,7 +53,7 @@ __all__ = [
 ]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "6"
+MODEL_VERSION = "7"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -200,7 +200,7 @@ class _Beam:
         self.ei, self.gj = ei, gj
         k, strips = layout.chordwise, layout.n_strips
         # Panels to strips: strip i holds panels i k .. i k + k - 1.
-        self.strips = ca.DM(np.kron(np.eye(strips), np.ones((1, k))))
+        self.strips = ca.sparsify(ca.DM(np.kron(np.eye(strips), np.ones((1, k)))))
 
     def _outboard(self, loads: ca.MX, part: int) -> ca.MX:
         m = self.layout.n_panels
