@@ -29,9 +29,10 @@ per unit V, so the residual is exactly affine in q:
 The compiled function returns r0, r1, J0, J1, and for trimmed flight the derivatives of r0 and
 r1 in alpha and the lift per unit q with its derivatives. The Jacobian is exact: CasADi
 differentiates the lattice geometry, the aerodynamic glue and the horseshoe kernel
-(`vlm.pair_kernel`); the O(M^2) induced-velocity part is combined by the chain rule from the
-kernel's own derivatives, and the beam's outboard sums are applied as running sums, which keeps
-the work at O(M^2) instead of O(M^3).
+(`vlm.pair_kernel` at the force points; `vlm.normal_pair_kernel` at the collocation points, where
+tangency needs only the normal component); the O(M^2) induced-velocity part is combined by the
+chain rule from the kernel's own derivatives, and the beam's outboard sums are applied as running
+sums over a sparse panels-to-strips operator, which keeps the work at O(M^2) instead of O(M^3).
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ import numpy as np
 
 from solver.geometry import DEG, Lattice, lattice
 from solver.layout import Layout
-from solver.vlm import induced_velocities, source_columns
+from solver.vlm import induced_velocities, normal_source_columns, source_columns
 
 __all__ = [
     "MODEL_VERSION",
@@ -53,7 +54,7 @@ __all__ = [
 ]
 
 # Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "7"
+MODEL_VERSION = "8"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -102,14 +103,14 @@ class _Parameters:
 # them, so they are built once per mesh, not three times.
 @functools.lru_cache(maxsize=8)
 def _lattice_function(layout: Layout) -> ca.Function:
-    """(z, parameters) -> vortex vertices, collocation and force points, and their derivatives
-    w.r.t. z = [u; u'; phi] (3N)."""
+    """(z, parameters) -> vortex vertices, collocation and force points, the panels' unit
+    normals, and the four point sets' derivatives w.r.t. z = [u; u'; phi] (3N)."""
     params = _Parameters(layout)
     z = ca.SX.sym("z", 3 * layout.n)
     lat = params.lattice(z)
     outputs = [lat.left, lat.right, lat.collocation, lat.center]
     jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
-    return ca.Function("wing_lattice", [z, *params.inputs], outputs + jacobians)
+    return ca.Function("wing_lattice", [z, *params.inputs], [*outputs, lat.normal, *jacobians])
 
 
 def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep: ca.SX):
@@ -141,8 +142,10 @@ def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
     """Tangency residuals and per-panel loads given the induced velocities.
 
     Outputs: tangency (M,) [-]; loads (5M,) per unit q (see _LOADS). With `with_jacobians` also
-    their partial derivatives w.r.t. w = [u; u'; phi; g], w.r.t. the induced velocities, and
-    w.r.t. alpha.
+    their partial derivatives w.r.t. w = [u; u'; phi; g] (the induced velocities held fixed: for
+    tangency that leaves the normal's rotation), the loads' w.r.t. the induced velocities at the
+    force points, and both w.r.t. alpha. (Tangency's derivative through the induced velocity is
+    n . d(induced), which `vlm.normal_source_columns` gives directly.)
     """
     m = layout.n_panels
     params = _Parameters(layout)
@@ -160,7 +163,6 @@ def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
         w = ca.vertcat(z, g)
         outputs += [
             ca.jacobian(tangency, w),
-            ca.jacobian(tangency, induced_tangency),
             ca.jacobian(loads, w),
             ca.jacobian(loads, induced_forces),
             ca.jacobian(tangency, alpha_deg),
@@ -261,16 +263,19 @@ def _induced_derivative(
     left_z: ca.MX,
     right_z: ca.MX,
     m: int,
+    rows_per_point: int = 3,
 ) -> ca.MX:
     """d(induced velocity)/dz by the chain rule through field points and vortex vertices.
 
-    g_dfield (3M, 3), g_dleft/g_dright (3M, 3M) from `vlm.source_columns`; field_z, left_z,
-    right_z (3M, 3N) the lattice's derivatives (rows 3p + c: point p's coordinate c).
+    g_dfield (R, 3), g_dleft/g_dright (R, 3M) from `vlm.source_columns` (R = 3M, rows 3i + c:
+    field point i's component c) or `vlm.normal_source_columns` (R = M, rows_per_point = 1: the
+    normal component); field_z, left_z, right_z (3M, 3N) the lattice's derivatives (rows
+    3p + c: point p's coordinate c).
     """
     result = ca.mtimes(g_dleft, left_z) + ca.mtimes(g_dright, right_z)
     for component in range(3):
-        # Row 3i + c of the field derivative uses field point i's coordinate `component`.
-        rows = [3 * i + component for i in range(m) for _ in range(3)]
+        # Each row of field point i uses that point's coordinate `component`.
+        rows = [3 * i + component for i in range(m) for _ in range(rows_per_point)]
         result += ca.mtimes(ca.diag(g_dfield[:, component]), field_z[rows, :])
     return result
 
@@ -305,7 +310,7 @@ class _Symbols:
         self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
 
     def lattice(self) -> tuple[ca.MX, ...]:
-        """left, right, collocation, center and their derivatives w.r.t. z."""
+        """left, right, collocation, center, normal, and the point sets' derivatives w.r.t. z."""
         return tuple(_lattice_function(self.layout)(self.z, *self.geometry_inputs))  # type: ignore[arg-type]
 
     def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
@@ -350,26 +355,37 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     drag_x (1, n). See the module docstring."""
     sym = _Symbols(layout)
     m, n, nx = sym.m, layout.n, layout.n_unknowns
-    left, right, collocation, center, left_z, right_z, collocation_z, center_z = sym.lattice()
-    sources = source_columns(m)
+    (
+        left,
+        right,
+        collocation,
+        center,
+        normal,
+        left_z,
+        right_z,
+        collocation_z,
+        center_z,
+    ) = sym.lattice()
     g_row = sym.circulation.T
-    ind_t, infl_t, dfield_t, dleft_t, dright_t = sources(
-        collocation, sym.all_bound_legs, left, right, g_row
+    ind_t, infl_t, dfield_t, dleft_t, dright_t = normal_source_columns(m)(
+        collocation, normal, sym.all_bound_legs, left, right, g_row
     )
-    ind_f, infl_f, dfield_f, dleft_f, dright_f = sources(
+    ind_f, infl_f, dfield_f, dleft_f, dright_f = source_columns(m)(
         center, sym.no_self_bound_leg, left, right, g_row
     )
-    # Induced velocities w.r.t. x = [z; g].
-    ind_t_x = ca.horzcat(
-        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_z, left_z, right_z, m), infl_t
+    # Normal induced velocities at the collocation points and induced velocities at the force
+    # points, w.r.t. x = [z; g].
+    normal_ind_t_x = ca.horzcat(
+        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_z, left_z, right_z, m, 1),
+        infl_t,
     )
     ind_f_x = ca.horzcat(
         _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
     )
-    tangency, loads, tangency_w, tangency_ind, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
+    tangency, loads, tangency_w, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
         True, ind_t, ind_f
     )
-    tangency_x = tangency_w + ca.mtimes(tangency_ind, ind_t_x)
+    tangency_x = tangency_w + normal_ind_t_x
     loads_x = loads_w + ca.mtimes(loads_ind, ind_f_x)
     r0, r1 = sym.residual(tangency, loads)
     structure = _structure_rows(layout, sym.x, sym.beam.h)

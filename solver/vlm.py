@@ -17,7 +17,9 @@ input masks it exactly (AeroSandbox's 1e-8 m core radius gives the same numbers)
 
 `pair_kernel` returns the velocity and its exact derivatives with respect to the three points, so
 the full Jacobian of the coupled residual is assembled from O(N^2) kernel values by the chain
-rule instead of by differentiating through a dense O(N^2) expression graph.
+rule instead of by differentiating through a dense O(N^2) expression graph. Flow tangency reads
+only the normal component n . v at a collocation point: `normal_pair_kernel` gives it and its
+derivatives as rows, a third of the derivative work of the full kernel.
 """
 
 from __future__ import annotations
@@ -25,7 +27,14 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-__all__ = ["horseshoe_velocity", "pair_kernel", "source_columns", "induced_velocities"]
+__all__ = [
+    "horseshoe_velocity",
+    "induced_velocities",
+    "normal_pair_kernel",
+    "normal_source_columns",
+    "pair_kernel",
+    "source_columns",
+]
 
 _MIRROR = ca.DM([1.0, -1.0, 1.0])
 
@@ -93,6 +102,98 @@ def pair_kernel() -> ca.Function:
         outputs,
         ["field", "bound_weight", "left", "right", "g"],
         ["velocity", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def normal_pair_kernel() -> ca.Function:
+    """`pair_kernel` seen along a field point's unit normal n: what flow tangency needs.
+
+    Tangency reads only n . v, so its derivatives are rows n^T dv (1, 3) instead of 3 x 3
+    blocks: a third of the kernel's derivative work and of the O(M^2) chain rule after it.
+
+    Inputs: field, bound_weight, left, right, g as `pair_kernel`; normal (3,) [-], held
+    constant (how the normal itself moves with the geometry is the caller's part).
+    Outputs, per unit V:
+        velocity (3,) [-]: induced velocity per unit g.
+        normal_velocity (1,) [-]: n . velocity.
+        g_dfield, g_dleft, g_dright (1, 3): g n^T d(velocity)/d(point).
+    """
+    field = ca.SX.sym("field", 3)
+    weight = ca.SX.sym("bound_weight")
+    left = ca.SX.sym("left", 3)
+    right = ca.SX.sym("right", 3)
+    g = ca.SX.sym("g")
+    normal = ca.SX.sym("normal", 3)
+    right_half = horseshoe_velocity(field, left, right, weight)
+    left_half = horseshoe_velocity(field, _MIRROR * right, _MIRROR * left)
+    right_normal = ca.dot(normal, right_half)
+    left_normal = ca.dot(normal, left_half)
+    d_left = ca.jacobian(right_normal, left) + ca.jacobian(left_normal, left)
+    d_right = ca.jacobian(right_normal, right) + ca.jacobian(left_normal, right)
+    # As in `pair_kernel`: moving the field point is moving the vertices the other way.
+    mirror = ca.diag(_MIRROR)
+    d_field = -(ca.jacobian(right_normal, left) + ca.jacobian(right_normal, right)) - ca.mtimes(
+        ca.jacobian(left_normal, left) + ca.jacobian(left_normal, right), mirror
+    )
+    velocity = right_half + left_half
+    outputs = ca.cse([velocity, right_normal + left_normal, g * d_field, g * d_left, g * d_right])
+    return ca.Function(
+        "vlm_normal_pair",
+        [field, weight, left, right, g, normal],
+        outputs,
+        ["field", "bound_weight", "left", "right", "g", "normal"],
+        ["velocity", "normal_velocity", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def normal_source_columns(n_panels: int) -> ca.Function:
+    """`source_columns` along the field points' normals (flow tangency's view).
+
+    Inputs as `source_columns`, and normal (3, M) [-]: the field points' unit normals.
+    Outputs, per unit V (field point i, source k):
+        induced (3M, 1) [-]: sum_k g_k v_ik, rows 3 i + c (the full vector).
+        influence (M, M) [-]: n_i . v_ik, column k (per unit g_k): the influence matrix.
+        g_dfield (M, 3): sum_k g_k n_i^T d v_ik / d field_i, column d.
+        g_dleft, g_dright (M, 3M): g_k n_i^T d v_ik / d left_k, column 3 k + d (likewise
+            right_k).
+    """
+    m = n_panels
+    pair = normal_pair_kernel()
+    field = ca.MX.sym("field", 3, m)
+    normal = ca.MX.sym("normal", 3, m)
+    weight = ca.MX.sym("bound_weight", m, 1)
+    left = ca.MX.sym("left", 3, 1)
+    right = ca.MX.sym("right", 3, 1)
+    g = ca.MX.sym("g")
+    over_fields = pair.map("vlm_normal_over_fields", "serial", m, [2, 3, 4], [])
+    velocity, normal_velocity, g_dfield, g_dleft, g_dright = over_fields(
+        field, weight.T, left, right, g, normal
+    )
+    column = ca.Function(
+        "vlm_normal_column",
+        [field, normal, weight, left, right, g],
+        [
+            g * ca.vec(velocity),
+            normal_velocity.T,
+            ca.reshape(g_dfield, 3, m).T,
+            ca.reshape(g_dleft, 3, m).T,
+            ca.reshape(g_dright, 3, m).T,
+        ],
+    )
+    # All sources: field points and normals shared, the g-weighted sums reduced.
+    over_sources = column.map("vlm_normal_over_sources", "serial", m, [0, 1], [0, 2])
+    field_all = ca.MX.sym("field", 3, m)
+    normal_all = ca.MX.sym("normal", 3, m)
+    weight_all = ca.MX.sym("bound_weight", m, m)
+    left_all = ca.MX.sym("left", 3, m)
+    right_all = ca.MX.sym("right", 3, m)
+    g_all = ca.MX.sym("g", 1, m)
+    return ca.Function(
+        "vlm_normal_sources",
+        [field_all, normal_all, weight_all, left_all, right_all, g_all],
+        list(over_sources(field_all, normal_all, weight_all, left_all, right_all, g_all)),
+        ["field", "normal", "bound_weight", "left", "right", "g"],
+        ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
     )
 
 

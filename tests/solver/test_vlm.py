@@ -6,7 +6,13 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from solver.vlm import horseshoe_velocity, pair_kernel
+from solver.vlm import (
+    horseshoe_velocity,
+    normal_pair_kernel,
+    normal_source_columns,
+    pair_kernel,
+    source_columns,
+)
 
 
 def _segment(point: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
@@ -99,3 +105,45 @@ def test_the_pair_kernel_adds_the_mirrored_left_half_and_its_derivatives_are_exa
             ).ravel()
             finite = g * (v_plus - v_minus) / (2 * step)
             np.testing.assert_allclose(derivative[d], finite, rtol=1e-6, atol=1e-9)
+
+
+@pytest.mark.parametrize("bound_weight", [1.0, 0.0], ids=["with_bound_leg", "bound_leg_masked"])
+def test_the_normal_pair_kernel_is_the_pair_kernel_seen_along_the_normal(bound_weight: float):
+    """Tangency's kernel: n . v and n^T times each 3 x 3 derivative block, to round-off."""
+    rng = np.random.default_rng(7)
+    field, left, right = rng.normal(size=3), rng.normal(size=3), rng.normal(size=3)
+    normal = rng.normal(size=3)
+    normal /= np.linalg.norm(normal)
+    g = 0.7
+    velocity, g_dfield, g_dleft, g_dright = (
+        np.array(v) for v in pair_kernel()(field, bound_weight, left, right, g)
+    )
+    seen = [np.array(v) for v in normal_pair_kernel()(field, bound_weight, left, right, g, normal)]
+    np.testing.assert_array_equal(seen[0].ravel(), velocity.ravel())
+    np.testing.assert_allclose(seen[1].item(), normal @ velocity.ravel(), rtol=1e-13)
+    # pair_kernel's blocks are transposed: [d, c] = g d v_c / d point_d.
+    for along, block in zip(seen[2:], (g_dfield, g_dleft, g_dright), strict=True):
+        np.testing.assert_allclose(along.ravel(), block @ normal, rtol=1e-12, atol=1e-15)
+
+
+def test_the_normal_source_columns_are_the_source_columns_seen_along_the_normals():
+    """Every output of the tangency map is the full map's, contracted with n_i at field
+    point i (4 panels, the self-induced bound legs masked on the diagonal)."""
+    m = 4
+    rng = np.random.default_rng(3)
+    field = rng.normal(size=(3, m))
+    normal = rng.normal(size=(3, m))
+    normal /= np.linalg.norm(normal, axis=0)
+    weights = np.ones((m, m)) - np.eye(m)
+    left, right, g = rng.normal(size=(3, m)), rng.normal(size=(3, m)), rng.normal(size=(1, m))
+    induced, influence, g_dfield, g_dleft, g_dright = (
+        np.array(v) for v in source_columns(m)(field, weights, left, right, g)
+    )
+    seen = [np.array(v) for v in normal_source_columns(m)(field, normal, weights, left, right, g)]
+    # Row 3 i + c of the full outputs -> row i, contracted with n_i.
+    along = np.zeros((m, 3 * m))
+    for i in range(m):
+        along[i, 3 * i : 3 * i + 3] = normal[:, i]
+    np.testing.assert_allclose(seen[0], induced, rtol=1e-13, atol=1e-15)
+    for contracted, full in zip(seen[1:], (influence, g_dfield, g_dleft, g_dright), strict=True):
+        np.testing.assert_allclose(contracted, along @ full, rtol=1e-12, atol=1e-14)
