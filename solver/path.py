@@ -178,10 +178,12 @@ def _step(
 
     Predictor: one Newton step from the current equilibrium at the new q, on its Jacobians
     re-targeted there (free: the residual is affine in q); to first order it is the tangent
-    predictor x + dq dx/dq. The first correction reuses the same factors. Later corrections use
-    the Jacobian of the latest iterate, evaluated only if the residual there has not converged:
-    the landing point carries Jacobians one correction away, re-evaluated at the landing point
-    when that correction was not small (the stability verdict is judged on them).
+    predictor x + dq dx/dq. The first correction reuses the same factors. A corrected point
+    farther than `jacobian_distance` from where the Jacobians were evaluated gets them evaluated
+    there (with the residual, in one call): the next correction needs them, or, if the point has
+    converged, the stability verdict. A nearer point is checked by its residual alone and keeps
+    them unless it has not converged. So the landing point carries Jacobians at most a small
+    correction away.
 
     The corrector is plain Newton (no damping: a step that needs damping is too long). Its first
     correction must be small against the predicted move and each later one must contract: then
@@ -233,6 +235,11 @@ def _step(
             return _Landing(False, x, evaluation, iteration + 1, np.inf, reason)
         previous = size
         point = point - correction
+        if scaled_norm(point - jacobians_at, scale) > settings.jacobian_distance:
+            # Jacobians are needed here either way: for the next correction, or for the verdict
+            # if this point has converged, so the residual alone would be computed twice.
+            current, jacobians_at = evaluate(point), point
+            continue
         r0, r1 = residual(point)
         if np.max(np.abs(r0 + q_next * r1)) <= tolerance:
             current = Evaluation(r0, r1, current.jacobian0, current.jacobian1)
