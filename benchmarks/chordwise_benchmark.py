@@ -11,7 +11,7 @@ the jig (stability verdict included), whether compiled code served it, and AeroS
 time on the same case in the same run (tests/reference/generate_reference.py, one equilibrium,
 wall and CPU). Libraries come from $FLEXWING_CACHE_DIR: a k without one is timed on CasADi's
 virtual machine and says so (compile first with `solver.warm_up(30, chordwise_panels=k)`;
-k = 4 takes 10-30 minutes of one core). Figures are reported, never asserted.
+k = 4 takes 3-4 minutes of one core). Figures are reported, never asserted.
 """
 
 from __future__ import annotations
