@@ -14,8 +14,10 @@ characteristic pressure. Only the step sizes depend on this choice, not the bran
 Each step: predictor w + ds t; corrector Newton on the bordered system
     [J, r1 ] dw = -[ r(x, q)                ]
     [ t^T   ]       [ t^T (w - w_predicted) ]
-(columns scaled), one model evaluation per iteration; the tangent at the converged point costs
-one more linear solve with the evaluation Newton already made there. The fold, once bracketed by a
+(columns scaled). The first correction uses the previous point's Jacobians (a chord step: the
+prediction needs only its residual), each later one the Jacobians of the latest iterate; the
+tangent at the converged point costs one more linear solve with the evaluation Newton already
+made there. The fold, once bracketed by a
 sign change of dq/ds, is located by regula falsi (Illinois) on dq/ds along the hyperplanes of the
 last step: near a fold dq/ds is linear in arclength and q quadratic, so a few iterations give q
 to ~1e-10 relative.
@@ -245,16 +247,29 @@ class _Tracer:
         self.evaluations += 1
         return self.evaluate_x(w[:-1] * self.scale[:-1])
 
-    def correct(self, w_start: np.ndarray, normal: np.ndarray, offset: float) -> _Corrected | None:
+    def correct(
+        self,
+        w_start: np.ndarray,
+        normal: np.ndarray,
+        offset: float,
+        jacobians: Evaluation | None = None,
+    ) -> _Corrected | None:
         """Newton on r = 0 within the hyperplane normal . w = offset, from w_start.
 
-        After each correction the residual alone is checked first; the Jacobians are evaluated
+        `jacobians`: an evaluation whose Jacobians the first correction may use (the previous
+        branch point's, for a predictor step from it: a chord step, which spares evaluating
+        them at the prediction); the Jacobians are then evaluated at the first corrected point.
+        After later corrections the residual alone is checked first; the Jacobians are evaluated
         only where it has not converged, so the corrected point carries those of the iterate
         one correction before it (which its tangent uses: an error of the order of that last,
         small correction)."""
         w = w_start.copy()
         first_correction = 0.0
-        evaluation = self.evaluate(w)
+        if jacobians is None:
+            evaluation, stale = self.evaluate(w), False
+        else:
+            r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
+            evaluation, stale = Evaluation(r0, r1, jacobians.jacobian0, jacobians.jacobian1), True
         for iteration in range(self.settings.max_corrector_iterations + 1):
             q = w[-1] * self.scale[-1]
             residual = evaluation.residual(q)
@@ -280,6 +295,9 @@ class _Tracer:
             if iteration == 0:
                 first_correction = float(np.linalg.norm(update))
             w = w - update
+            if stale:  # the chord step's Jacobians are a whole step away: evaluate them here
+                evaluation, stale = self.evaluate(w), False
+                continue
             r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
             q = w[-1] * self.scale[-1]
             if np.all(np.isfinite(r0 + q * r1)) and np.max(np.abs(r0 + q * r1)) <= (
@@ -320,6 +338,9 @@ class BranchTracer:
         upward[-1] = 1.0
         tangent = _tangent(evaluation, 0.0, scale, upward)
         self._orientation = _orientation(evaluation, 0.0, scale, tangent)
+        # The last point's evaluation: its Jacobians serve the next predictor step's first
+        # correction (part of the step state, like the step length).
+        self._evaluation = evaluation
         self.points: list[BranchPoint] = [
             BranchPoint(jig_state.copy(), 0.0, tangent, 0.0, self._tracer.evaluations)
         ]
@@ -334,7 +355,8 @@ class BranchTracer:
 
     @property
     def nbytes(self) -> int:
-        return sum(point.state.nbytes + point.tangent.nbytes for point in self.points)
+        points = sum(point.state.nbytes + point.tangent.nbytes for point in self.points)
+        return points + self._evaluation.nbytes
 
     def extend(self, q_limit: float) -> None:
         """Trace on until the last point reaches q_limit [Pa], the fold, or a stall."""
@@ -374,7 +396,7 @@ class BranchTracer:
         w = _scaled(current.state, current.dynamic_pressure, self.scale)
         predicted = w + step * current.tangent
         corrected = self._tracer.correct(
-            predicted, current.tangent, float(current.tangent @ predicted)
+            predicted, current.tangent, float(current.tangent @ predicted), self._evaluation
         )
         turn = (
             math.acos(min(1.0, float(corrected.tangent @ current.tangent)))
@@ -405,6 +427,7 @@ class BranchTracer:
             self.folded = True
             return
         self.points.append(point)
+        self._evaluation = corrected.evaluation
         # Aim the next predictor error and turn at their targets; the predictor's error grows
         # as step^2, the turn as step.
         growth = min(
