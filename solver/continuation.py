@@ -17,10 +17,9 @@ Each step: predictor w + ds t; corrector Newton on the bordered system
 (columns scaled). The first correction uses the previous point's Jacobians (a chord step: the
 prediction needs only its residual), each later one the Jacobians of the latest iterate; the
 tangent at the converged point costs one more linear solve with the evaluation Newton already
-made there. The fold, once bracketed by a
-sign change of dq/ds, is located by regula falsi (Illinois) on dq/ds along the hyperplanes of the
-last step: near a fold dq/ds is linear in arclength and q quadratic, so a few iterations give q
-to ~1e-10 relative.
+made there. The fold, once bracketed by a sign change of dq/ds, is located by regula falsi
+(Illinois) on dq/ds along the hyperplanes of the last step: near a fold dq/ds is linear in
+arclength and q quadratic, so a few iterations give q to ~1e-10 relative.
 """
 
 from __future__ import annotations

@@ -149,7 +149,8 @@ def normal_pair_kernel() -> ca.Function:
 def normal_source_columns(n_panels: int) -> ca.Function:
     """`source_columns` along the field points' normals (flow tangency's view).
 
-    Inputs as `source_columns`, and normal (3, M) [-]: the field points' unit normals.
+    Inputs: field (3, M) [m], normal (3, M) [-] (the field points' unit normals), then
+    bound_weight, left, right and g as `source_columns`.
     Outputs, per unit V (field point i, source k):
         induced (3M, 1) [-]: sum_k g_k v_ik, rows 3 i + c (the full vector).
         influence (M, M) [-]: n_i . v_ik, column k (per unit g_k): the influence matrix.
