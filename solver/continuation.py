@@ -29,6 +29,7 @@ import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
@@ -43,6 +44,9 @@ __all__ = [
     "branch_scales",
     "scaled_norm",
 ]
+
+# A scaled state (n + 1,) or one of its components: cubic Hermite interpolation serves both.
+_Value = TypeVar("_Value", float, np.ndarray)
 
 
 @dataclass(frozen=True)
@@ -144,25 +148,32 @@ class Branch:
         w_right = _scaled(right.state, right.dynamic_pressure, self.scale)
         h = right.arclength - left.arclength
 
-        def hermite(tau: float) -> np.ndarray:
+        def hermite(
+            tau: float, start: _Value, start_slope: _Value, end: _Value, end_slope: _Value
+        ) -> _Value:
             tau2, tau3 = tau * tau, tau * tau * tau
             return (
-                (2 * tau3 - 3 * tau2 + 1) * w_left
-                + (tau3 - 2 * tau2 + tau) * h * left.tangent
-                + (-2 * tau3 + 3 * tau2) * w_right
-                + (tau3 - tau2) * h * right.tangent
+                (2 * tau3 - 3 * tau2 + 1) * start
+                + (tau3 - 2 * tau2 + tau) * h * start_slope
+                + (-2 * tau3 + 3 * tau2) * end
+                + (tau3 - tau2) * h * end_slope
             )
 
+        ends = (w_left, left.tangent, w_right, right.tangent)
+        q_ends = [float(end[-1]) for end in ends]
         target = q / self.scale[-1]
         low, high = 0.0, 1.0
-        # q(tau) rises from the left end to the right end of a pre-fold segment: bisect.
+        # q(tau) rises from the left end to the right end of a pre-fold segment: bisect on the
+        # q component alone (in floats, the same numbers as the whole vector's), then build the
+        # state once.
         for _ in range(60):
             middle = 0.5 * (low + high)
-            if hermite(middle)[-1] < target:
+            if hermite(middle, *q_ends) < target:
                 low = middle
             else:
                 high = middle
-        return hermite(0.5 * (low + high))[:-1] * self.scale[:-1]
+        state_ends = [end[:-1] for end in ends]
+        return hermite(0.5 * (low + high), *state_ends) * self.scale[:-1]
 
 
 def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: float) -> np.ndarray:
