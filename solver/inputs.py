@@ -273,7 +273,10 @@ class Wing:
         """(N, len(x)) [-] camber / chord of each station's section at x / chord."""
         if not self.camber:
             return np.zeros((self.n_stations, len(x)))
-        return np.array([line.at(x) for line in self.camber])
+        # One airfoil for the whole wing is one line repeated: evaluate each line once.
+        lines = {id(line): line for line in self.camber}
+        values = {key: line.at(x) for key, line in lines.items()}
+        return np.array([values[id(line)] for line in self.camber])
 
 
 def _check_airspeed(condition: FlightCondition | TrimCondition, other: str) -> None:
