@@ -70,22 +70,31 @@ def horseshoe_velocity(
     return (bound + trailing) / (4 * np.pi)
 
 
-def pair_kernel() -> ca.Function:
-    """Both halves' horseshoes of one right-half panel seen from one field point.
+def _pair_symbols() -> tuple[ca.SX, ca.SX, ca.SX, ca.SX, ca.SX]:
+    """One field point and one source panel: field (3,), bound_weight, left (3,), right (3,), g."""
+    return (
+        ca.SX.sym("field", 3),
+        ca.SX.sym("bound_weight"),
+        ca.SX.sym("left", 3),
+        ca.SX.sym("right", 3),
+        ca.SX.sym("g"),
+    )
 
-    Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m].
-    Outputs, all per unit V:
-        velocity (3,) [-]: induced velocity per unit g.
-        g_dfield (3, 3): g * d(velocity)/d(field), transposed ([d, c] = d v_c / d field_d).
-        g_dleft, g_dright (3, 3): the same for the two bound-vortex vertices.
-    """
-    field = ca.SX.sym("field", 3)
-    weight = ca.SX.sym("bound_weight")
-    left = ca.SX.sym("left", 3)
-    right = ca.SX.sym("right", 3)
-    g = ca.SX.sym("g")
-    right_half = horseshoe_velocity(field, left, right, weight)
-    left_half = horseshoe_velocity(field, _MIRROR * right, _MIRROR * left)
+
+def _halves(field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX) -> tuple[ca.SX, ca.SX]:
+    """The velocities at `field` of the right half's horseshoe (its bound leg weighted) and of
+    its mirror image on the left half, per unit g."""
+    return (
+        horseshoe_velocity(field, left, right, weight),
+        horseshoe_velocity(field, _MIRROR * right, _MIRROR * left),
+    )
+
+
+def _vertex_derivatives(
+    right_half: ca.SX, left_half: ca.SX, left: ca.SX, right: ca.SX
+) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """d/d(field), d/d(left), d/d(right) of right_half + left_half (each any function of the two
+    halves' velocities, such as the velocities themselves or their normal components)."""
     d_left = ca.jacobian(right_half, left) + ca.jacobian(left_half, left)
     d_right = ca.jacobian(right_half, right) + ca.jacobian(left_half, right)
     # Each horseshoe depends on its vertices only through field - vertex, so moving the field
@@ -95,6 +104,21 @@ def pair_kernel() -> ca.Function:
     d_field = -(ca.jacobian(right_half, left) + ca.jacobian(right_half, right)) - ca.mtimes(
         ca.jacobian(left_half, left) + ca.jacobian(left_half, right), mirror
     )
+    return d_field, d_left, d_right
+
+
+def pair_kernel() -> ca.Function:
+    """Both halves' horseshoes of one right-half panel seen from one field point.
+
+    Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m].
+    Outputs, all per unit V:
+        velocity (3,) [-]: induced velocity per unit g.
+        g_dfield (3, 3): g * d(velocity)/d(field), transposed ([d, c] = d v_c / d field_d).
+        g_dleft, g_dright (3, 3): the same for the two bound-vortex vertices.
+    """
+    field, weight, left, right, g = _pair_symbols()
+    right_half, left_half = _halves(field, weight, left, right)
+    d_field, d_left, d_right = _vertex_derivatives(right_half, left_half, left, right)
     outputs = ca.cse([right_half + left_half, g * d_field.T, g * d_left.T, g * d_right.T])
     return ca.Function(
         "vlm_pair",
@@ -118,23 +142,12 @@ def normal_pair_kernel() -> ca.Function:
         normal_velocity (1,) [-]: n . velocity.
         g_dfield, g_dleft, g_dright (1, 3): g n^T d(velocity)/d(point).
     """
-    field = ca.SX.sym("field", 3)
-    weight = ca.SX.sym("bound_weight")
-    left = ca.SX.sym("left", 3)
-    right = ca.SX.sym("right", 3)
-    g = ca.SX.sym("g")
+    field, weight, left, right, g = _pair_symbols()
     normal = ca.SX.sym("normal", 3)
-    right_half = horseshoe_velocity(field, left, right, weight)
-    left_half = horseshoe_velocity(field, _MIRROR * right, _MIRROR * left)
+    right_half, left_half = _halves(field, weight, left, right)
     right_normal = ca.dot(normal, right_half)
     left_normal = ca.dot(normal, left_half)
-    d_left = ca.jacobian(right_normal, left) + ca.jacobian(left_normal, left)
-    d_right = ca.jacobian(right_normal, right) + ca.jacobian(left_normal, right)
-    # As in `pair_kernel`: moving the field point is moving the vertices the other way.
-    mirror = ca.diag(_MIRROR)
-    d_field = -(ca.jacobian(right_normal, left) + ca.jacobian(right_normal, right)) - ca.mtimes(
-        ca.jacobian(left_normal, left) + ca.jacobian(left_normal, right), mirror
-    )
+    d_field, d_left, d_right = _vertex_derivatives(right_normal, left_normal, left, right)
     velocity = right_half + left_half
     outputs = ca.cse([velocity, right_normal + left_normal, g * d_field, g * d_left, g * d_right])
     return ca.Function(
@@ -143,6 +156,30 @@ def normal_pair_kernel() -> ca.Function:
         outputs,
         ["field", "bound_weight", "left", "right", "g", "normal"],
         ["velocity", "normal_velocity", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def _column_symbols(m: int) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX, ca.MX]:
+    """One source against M field points: field (3, M), bound_weight (M, 1), left (3, 1),
+    right (3, 1), g."""
+    return (
+        ca.MX.sym("field", 3, m),
+        ca.MX.sym("bound_weight", m, 1),
+        ca.MX.sym("left", 3, 1),
+        ca.MX.sym("right", 3, 1),
+        ca.MX.sym("g"),
+    )
+
+
+def _all_symbols(m: int) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX, ca.MX]:
+    """M sources against M field points: field (3, M), bound_weight (M, M), left (3, M),
+    right (3, M), g (1, M)."""
+    return (
+        ca.MX.sym("field", 3, m),
+        ca.MX.sym("bound_weight", m, m),
+        ca.MX.sym("left", 3, m),
+        ca.MX.sym("right", 3, m),
+        ca.MX.sym("g", 1, m),
     )
 
 
@@ -160,12 +197,8 @@ def normal_source_columns(n_panels: int) -> ca.Function:
     """
     m = n_panels
     pair = normal_pair_kernel()
-    field = ca.MX.sym("field", 3, m)
+    field, weight, left, right, g = _column_symbols(m)
     normal = ca.MX.sym("normal", 3, m)
-    weight = ca.MX.sym("bound_weight", m, 1)
-    left = ca.MX.sym("left", 3, 1)
-    right = ca.MX.sym("right", 3, 1)
-    g = ca.MX.sym("g")
     over_fields = pair.map("vlm_normal_over_fields", "serial", m, [2, 3, 4], [])
     velocity, normal_velocity, g_dfield, g_dleft, g_dright = over_fields(
         field, weight.T, left, right, g, normal
@@ -183,12 +216,8 @@ def normal_source_columns(n_panels: int) -> ca.Function:
     )
     # All sources: field points and normals shared, the g-weighted sums reduced.
     over_sources = column.map("vlm_normal_over_sources", "serial", m, [0, 1], [0, 2])
-    field_all = ca.MX.sym("field", 3, m)
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     normal_all = ca.MX.sym("normal", 3, m)
-    weight_all = ca.MX.sym("bound_weight", m, m)
-    left_all = ca.MX.sym("left", 3, m)
-    right_all = ca.MX.sym("right", 3, m)
-    g_all = ca.MX.sym("g", 1, m)
     return ca.Function(
         "vlm_normal_sources",
         [field_all, normal_all, weight_all, left_all, right_all, g_all],
@@ -214,11 +243,7 @@ def source_columns(n_panels: int) -> ca.Function:
     """
     m = n_panels
     pair = pair_kernel()
-    field = ca.MX.sym("field", 3, m)
-    weight = ca.MX.sym("bound_weight", m, 1)
-    left = ca.MX.sym("left", 3, 1)
-    right = ca.MX.sym("right", 3, 1)
-    g = ca.MX.sym("g")
+    field, weight, left, right, g = _column_symbols(m)
     # Inner map: one source against all field points (source inputs shared).
     over_fields = pair.map("vlm_over_fields", "serial", m, [2, 3, 4], [])
     velocity, g_dfield, g_dleft, g_dright = over_fields(field, weight.T, left, right, g)
@@ -235,11 +260,7 @@ def source_columns(n_panels: int) -> ca.Function:
     )
     # Outer map: all sources; field points shared, the g-weighted sums reduced.
     over_sources = column.map("vlm_over_sources", "serial", m, [0], [1, 2])
-    field_all = ca.MX.sym("field", 3, m)
-    weight_all = ca.MX.sym("bound_weight", m, m)
-    left_all = ca.MX.sym("left", 3, m)
-    right_all = ca.MX.sym("right", 3, m)
-    g_all = ca.MX.sym("g", 1, m)
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     influence, induced, g_dfield_sum, g_dleft_all, g_dright_all = over_sources(
         field_all, weight_all, left_all, right_all, g_all
     )
@@ -258,30 +279,20 @@ def induced_velocities(n_panels: int) -> ca.Function:
     Inputs as `source_columns`; output induced (3M, 1) [-] per unit V, rows 3 i + c.
     """
     m = n_panels
-    field = ca.SX.sym("field", 3)
-    weight = ca.SX.sym("bound_weight")
-    left = ca.SX.sym("left", 3)
-    right = ca.SX.sym("right", 3)
-    g = ca.SX.sym("g")
-    velocity = horseshoe_velocity(field, left, right, weight) + horseshoe_velocity(
-        field, _MIRROR * right, _MIRROR * left
+    field, weight, left, right, g = _pair_symbols()
+    right_half, left_half = _halves(field, weight, left, right)
+    pair = ca.Function(
+        "vlm_pair_value", [field, weight, left, right, g], [g * (right_half + left_half)]
     )
-    pair = ca.Function("vlm_pair_value", [field, weight, left, right, g], [g * velocity])
     over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4], [])
-    field_mx = ca.MX.sym("field", 3, m)
-    weight_mx = ca.MX.sym("bound_weight", m, 1)
-    left_mx, right_mx, g_mx = ca.MX.sym("left", 3), ca.MX.sym("right", 3), ca.MX.sym("g")
+    field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
     column = ca.Function(
         "vlm_value_column",
         [field_mx, weight_mx, left_mx, right_mx, g_mx],
         [ca.vec(over_fields(field_mx, weight_mx.T, left_mx, right_mx, g_mx))],
     )
     over_sources = column.map("vlm_value_over_sources", "serial", m, [0], [0])
-    field_all = ca.MX.sym("field", 3, m)
-    weight_all = ca.MX.sym("bound_weight", m, m)
-    left_all = ca.MX.sym("left", 3, m)
-    right_all = ca.MX.sym("right", 3, m)
-    g_all = ca.MX.sym("g", 1, m)
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     return ca.Function(
         "vlm_induced",
         [field_all, weight_all, left_all, right_all, g_all],
