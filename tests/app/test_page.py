@@ -100,6 +100,20 @@ class Visit:
             self.wait_runs("solve", before)
         return dict(sent.value.post_data_json)
 
+    def swept(self, outcome: str = "sweep", press: str | None = None) -> dict[str, Any]:
+        """Sweep (Enter in the field `press`, else the Sweep button) and wait for a run of
+        `outcome` ("sweep" or "failed"); returns the POST /jobs body the page sent."""
+        with self.page.expect_request(
+            lambda r: r.url.endswith("/jobs") and r.method == "POST"
+        ) as sent:
+            before = self.runs()
+            if press is None:
+                self.page.click("#sweep-button")
+            else:
+                self.page.press(press, "Enter")
+            self.wait_runs(outcome, before)
+        return dict(sent.value.post_data_json)
+
     def wait_runs(self, kind: str, before: dict[str, int]) -> None:
         """Wait until one more run of `kind` ("solve", "sweep" or "failed") has finished."""
         self.page.wait_for_function(
@@ -258,8 +272,7 @@ def test_a_sweep_draws_the_amplification_curve_and_marks_the_fold(
     sent: list[tuple[str, str]] = []
     page.on("request", lambda r: sent.append((r.method, r.url.removeprefix(tab.origin))))
     before = tab.runs()
-    page.press("#f-sweep_count", "Enter")  # Enter in a sweep field sweeps
-    tab.wait_runs("sweep", before)
+    tab.swept(press="#f-sweep_count")  # Enter in a sweep field sweeps
     assert tab.runs()["solve"] == before["solve"]
     # Issue 14: the sweep runs as a job (POST /jobs, then GET /jobs/{id} until it ends).
     assert ("POST", "/sweep") not in sent
@@ -588,12 +601,9 @@ def test_a_trimmed_sweep_draws_points_and_its_stability_limit(
     page.fill("#f-sweep_start", "6")
     page.fill("#f-sweep_stop", "22")
     page.fill("#f-sweep_count", "9")
-    with page.expect_request(lambda r: r.url.endswith("/jobs") and r.method == "POST") as sent:
-        before = tab.runs()
-        page.click("#sweep-button")
-        tab.wait_runs("sweep", before)
-    assert sent.value.post_data_json["operation"] == "sweep"
-    flight = sent.value.post_data_json["request"]["flight"]
+    body = tab.swept()
+    assert body["operation"] == "sweep"
+    flight = body["request"]["flight"]
     assert flight == {"weight": 300, "load_factor": 1, "density": 1.225}
     figure = tab.figure("14.4")
     assert figure["amplification"] == "lift_effectiveness"
@@ -656,10 +666,8 @@ def test_a_negative_chord_in_a_sweep_is_reported_next_to_its_cell(
     page.click("#stations-details summary")
     cell = page.locator("#cell-chord-3")
     cell.fill("-0.5")
-    before = tab.runs()
     with page.expect_response(lambda r: r.url.endswith("/jobs")) as answered:
-        page.click("#sweep-button")
-        tab.wait_runs("failed", before)
+        tab.swept("failed")
     assert answered.value.status == 422
     assert cell.get_attribute("aria-invalid") == "true"
     error = page.locator(f"#{cell.get_attribute('aria-describedby')}")
@@ -719,9 +727,7 @@ def test_cancelling_a_sweep_cancels_its_job_and_leaves_the_page_usable(
     # The page is usable: the next sweep (answered for real) is drawn.
     page.unroute("**/jobs/*")
     page.fill("#f-sweep_count", "9")
-    before = tab.runs()
-    page.click("#sweep-button")
-    tab.wait_runs("sweep", before)
+    tab.swept()
     assert len(tab.figure("14.4")["series"]["amplification"]["x"]) == 8
     assert tab.errors == []
 
