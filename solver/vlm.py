@@ -20,6 +20,12 @@ the full Jacobian of the coupled residual is assembled from O(N^2) kernel values
 rule instead of by differentiating through a dense O(N^2) expression graph. Flow tangency reads
 only the normal component n . v at a collocation point: `normal_pair_kernel` gives it and its
 derivatives as rows, a third of the derivative work of the full kernel.
+
+The kernels are most of the Jacobian's cost, so their derivatives are written out by hand
+(`_Horseshoe`) from reciprocals computed once per horseshoe: no division and no square root in
+the derivative graph, where CasADi's differentiation rules put ~80 divisions into each pair
+(1.1-1.4x faster kernels; tests/solver/test_vlm.py checks them against CasADi's differentiation
+to round-off).
 """
 
 from __future__ import annotations
@@ -47,6 +53,131 @@ def _cross(a: ca.SX, b: ca.SX) -> ca.SX:
     )
 
 
+_INV_4PI = 1.0 / (4 * np.pi)
+_E_X = ca.DM([1.0, 0.0, 0.0])
+
+
+def _skew(v: ca.SX) -> ca.SX:
+    """(3, 3) the cross-product matrix: _skew(v) w = v x w."""
+    zero = ca.SX(1, 1)
+    return ca.vertcat(
+        ca.horzcat(zero, -v[2], v[1]),
+        ca.horzcat(v[2], zero, -v[0]),
+        ca.horzcat(-v[1], v[0], zero),
+    )
+
+
+class _Horseshoe:
+    """One horseshoe (bound leg left -> right, trailing legs to +x infinity) seen from one
+    field point, through a = field - left and b = field - right, times 4 pi.
+
+    The velocity is written with its reciprocals computed once,
+
+        4 pi v = k (a x b) + f_a (a x u) - f_b (b x u),
+        k = w (1/|a| + 1/|b|) / (|a||b| + a.b + 1 - w),   f_a = 1/(|a| (|a| - a_x)),
+
+    and its derivatives in a and b are written out by hand from the same reciprocals: the
+    derivative graph has no division and no square root (CasADi's own rules would put ~40
+    divisions into each pair's derivatives, most of the kernel's time). tests/solver/test_vlm.py
+    checks them against CasADi's differentiation of `horseshoe_velocity`.
+    """
+
+    def __init__(self, a: ca.SX, b: ca.SX, bound_weight: ca.SX | float) -> None:
+        self.a, self.b = a, b
+        self.norm_a = ca.sqrt(ca.dot(a, a))
+        self.norm_b = ca.sqrt(ca.dot(b, b))
+        # Every reciprocal below is positive: fabs changes no value, but keeps CasADi from
+        # folding x * (1/y) back into a division at each use.
+        self.inv_a = ca.fabs(1 / self.norm_a)
+        self.inv_b = ca.fabs(1 / self.norm_b)
+        self.trailing_a = ca.fabs(1 / (self.norm_a * (self.norm_a - a[0])))
+        self.trailing_b = ca.fabs(1 / (self.norm_b * (self.norm_b - b[0])))
+        # With weight 0 (a field point on the bound leg itself) the denominator is shifted away
+        # from 0 and the bound leg's factor multiplied by 0: value and derivatives see no 0/0.
+        bound = ca.fabs(1 / (self.norm_a * self.norm_b + ca.dot(a, b) + (1 - bound_weight)))
+        self.weighted = bound_weight * bound
+        self.inv_sum = self.inv_a + self.inv_b
+        self.bound_factor = self.weighted * self.inv_sum  # k
+        self.cross = _cross(a, b)
+        self.bound_share = self.inv_sum * bound  # k / w, what differentiating 1/den leaves
+
+    def velocity(self) -> ca.SX:
+        """(3,) 4 pi v."""
+        a, b = self.a, self.b
+        return (
+            self.bound_factor * self.cross
+            + self.trailing_a * ca.vertcat(0, a[2], -a[1])
+            - self.trailing_b * ca.vertcat(0, b[2], -b[1])
+        )
+
+    def _bound_factor_gradients(self) -> tuple[ca.SX, ca.SX]:
+        """dk/da, dk/db (3,): k = w s / D with s = 1/|a| + 1/|b|, D = |a||b| + a.b + 1 - w,
+        ds/da = -a/|a|^3 and dD/da = |b| a/|a| + b (likewise in b)."""
+        a, b, share = self.a, self.b, self.bound_share
+        along_a = self.inv_a * self.inv_a * self.inv_a + share * self.norm_b * self.inv_a
+        along_b = self.inv_b * self.inv_b * self.inv_b + share * self.norm_a * self.inv_b
+        return (
+            -self.weighted * (along_a * a + share * b),
+            -self.weighted * (along_b * b + share * a),
+        )
+
+    @staticmethod
+    def _trailing_gradient(v: ca.SX, norm: ca.SX, inv: ca.SX, factor: ca.SX) -> ca.SX:
+        """d f/dv (3,) of f = 1/(|v|^2 - |v| v_x): -f^2 ((2 - v_x/|v|) v - |v| e_x)."""
+        squared = factor * factor
+        return -squared * ((2 - v[0] * inv) * v) + (squared * norm) * _E_X
+
+    def derivatives(self) -> tuple[ca.SX, ca.SX]:
+        """(3, 3) d(4 pi v)/da and d(4 pi v)/db, [c, d] = d v_c / d a_d."""
+        a, b = self.a, self.b
+        k_a, k_b = self._bound_factor_gradients()
+        f_a = self._trailing_gradient(a, self.norm_a, self.inv_a, self.trailing_a)
+        f_b = self._trailing_gradient(b, self.norm_b, self.inv_b, self.trailing_b)
+        zero = ca.SX(1, 3)
+        trailing_da = ca.vertcat(
+            zero,
+            a[2] * f_a.T + ca.horzcat(0, 0, self.trailing_a),
+            -a[1] * f_a.T - ca.horzcat(0, self.trailing_a, 0),
+        )
+        trailing_db = ca.vertcat(
+            zero,
+            -b[2] * f_b.T - ca.horzcat(0, 0, self.trailing_b),
+            b[1] * f_b.T + ca.horzcat(0, self.trailing_b, 0),
+        )
+        # d(a x b)/da = -[b]x, d(a x b)/db = [a]x.
+        k = self.bound_factor
+        d_a = -k * _skew(b) + ca.mtimes(self.cross, k_a.T) + trailing_da
+        d_b = k * _skew(a) + ca.mtimes(self.cross, k_b.T) + trailing_db
+        return d_a, d_b
+
+    def normal_derivatives(self, normal: ca.SX) -> tuple[ca.SX, ca.SX]:
+        """(1, 3) n^T d(4 pi v)/da and n^T d(4 pi v)/db, without the 3 x 3 blocks:
+        n^T [b]x = -(b x n)^T, n^T [a]x = -(a x n)^T = (n x a)^T."""
+        a, b = self.a, self.b
+        k_a, k_b = self._bound_factor_gradients()
+        f_a = self._trailing_gradient(a, self.norm_a, self.inv_a, self.trailing_a)
+        f_b = self._trailing_gradient(b, self.norm_b, self.inv_b, self.trailing_b)
+        along_cross = ca.dot(normal, self.cross)
+        # n . (v x u) for u = e_x: n_y v_z - n_z v_y.
+        seen_a = normal[1] * a[2] - normal[2] * a[1]
+        seen_b = normal[1] * b[2] - normal[2] * b[1]
+        sideways = ca.horzcat(0, -normal[2], normal[1])  # n^T d(v x u)/dv
+        k = self.bound_factor
+        d_a = (
+            k * _cross(b, normal).T
+            + along_cross * k_a.T
+            + seen_a * f_a.T
+            + self.trailing_a * sideways
+        )
+        d_b = (
+            k * _cross(normal, a).T
+            + along_cross * k_b.T
+            - seen_b * f_b.T
+            - self.trailing_b * sideways
+        )
+        return d_a, d_b
+
+
 def horseshoe_velocity(
     field: ca.SX, left: ca.SX, right: ca.SX, bound_weight: ca.SX | float = 1.0
 ) -> ca.SX:
@@ -55,19 +186,7 @@ def horseshoe_velocity(
     All points are (3,) [m]. `bound_weight` is 1, or 0 to drop the bound leg's contribution
     (for a field point on the bound leg itself).
     """
-    a = field - left
-    b = field - right
-    norm_a = ca.sqrt(ca.dot(a, a))
-    norm_b = ca.sqrt(ca.dot(b, b))
-    # Trailing legs run along +x: a x u = [0, a_z, -a_y], a.u = a_x.
-    a_cross_u = ca.vertcat(0, a[2], -a[1])
-    b_cross_u = ca.vertcat(0, b[2], -b[1])
-    trailing = a_cross_u / (norm_a * (norm_a - a[0])) - b_cross_u / (norm_b * (norm_b - b[0]))
-    # With weight 0 the denominator is shifted away from 0/0 and the term multiplied by 0, so
-    # neither the value nor its derivatives see the singularity.
-    bound_denominator = norm_a * norm_b + ca.dot(a, b) + (1 - bound_weight)
-    bound = bound_weight * _cross(a, b) * (1 / norm_a + 1 / norm_b) / bound_denominator
-    return (bound + trailing) / (4 * np.pi)
+    return _Horseshoe(field - left, field - right, bound_weight).velocity() * _INV_4PI
 
 
 def _pair_symbols() -> tuple[ca.SX, ca.SX, ca.SX, ca.SX, ca.SX]:
@@ -81,29 +200,27 @@ def _pair_symbols() -> tuple[ca.SX, ca.SX, ca.SX, ca.SX, ca.SX]:
     )
 
 
-def _halves(field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX) -> tuple[ca.SX, ca.SX]:
-    """The velocities at `field` of the right half's horseshoe (its bound leg weighted) and of
-    its mirror image on the left half, per unit g."""
+def _halves(
+    field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX
+) -> tuple[_Horseshoe, _Horseshoe]:
+    """The right half's horseshoe at `field` (its bound leg weighted) and its mirror image on
+    the left half, which runs from m(right) to m(left)."""
     return (
-        horseshoe_velocity(field, left, right, weight),
-        horseshoe_velocity(field, _MIRROR * right, _MIRROR * left),
+        _Horseshoe(field - left, field - right, weight),
+        _Horseshoe(field - _MIRROR * right, field - _MIRROR * left, 1.0),
     )
 
 
 def _vertex_derivatives(
-    right_half: ca.SX, left_half: ca.SX, left: ca.SX, right: ca.SX
+    right_da: ca.SX, right_db: ca.SX, left_da: ca.SX, left_db: ca.SX
 ) -> tuple[ca.SX, ca.SX, ca.SX]:
-    """d/d(field), d/d(left), d/d(right) of right_half + left_half (each any function of the two
-    halves' velocities, such as the velocities themselves or their normal components)."""
-    d_left = ca.jacobian(right_half, left) + ca.jacobian(left_half, left)
-    d_right = ca.jacobian(right_half, right) + ca.jacobian(left_half, right)
-    # Each horseshoe depends on its vertices only through field - vertex, so moving the field
-    # point equals moving both vertices the other way; the left half's vertices are mirrored
-    # (m = m^-1). This saves a third of the kernel's work over differentiating w.r.t. the field.
+    """d/d(field), d/d(left), d/d(right) of both halves from their derivatives in a = field -
+    first vertex and b = field - second vertex. The left half's vertices are mirrored
+    (m = m^-1): its a moves with m(right), its b with m(left)."""
     mirror = ca.diag(_MIRROR)
-    d_field = -(ca.jacobian(right_half, left) + ca.jacobian(right_half, right)) - ca.mtimes(
-        ca.jacobian(left_half, left) + ca.jacobian(left_half, right), mirror
-    )
+    d_field = right_da + right_db + left_da + left_db
+    d_left = -right_da - ca.mtimes(left_db, mirror)
+    d_right = -right_db - ca.mtimes(left_da, mirror)
     return d_field, d_left, d_right
 
 
@@ -118,8 +235,12 @@ def pair_kernel() -> ca.Function:
     """
     field, weight, left, right, g = _pair_symbols()
     right_half, left_half = _halves(field, weight, left, right)
-    d_field, d_left, d_right = _vertex_derivatives(right_half, left_half, left, right)
-    outputs = ca.cse([right_half + left_half, g * d_field.T, g * d_left.T, g * d_right.T])
+    d_field, d_left, d_right = _vertex_derivatives(
+        *right_half.derivatives(), *left_half.derivatives()
+    )
+    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    scaled = g * _INV_4PI
+    outputs = ca.cse([velocity, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T])
     return ca.Function(
         "vlm_pair",
         [field, weight, left, right, g],
@@ -145,11 +266,14 @@ def normal_pair_kernel() -> ca.Function:
     field, weight, left, right, g = _pair_symbols()
     normal = ca.SX.sym("normal", 3)
     right_half, left_half = _halves(field, weight, left, right)
-    right_normal = ca.dot(normal, right_half)
-    left_normal = ca.dot(normal, left_half)
-    d_field, d_left, d_right = _vertex_derivatives(right_normal, left_normal, left, right)
-    velocity = right_half + left_half
-    outputs = ca.cse([velocity, right_normal + left_normal, g * d_field, g * d_left, g * d_right])
+    d_field, d_left, d_right = _vertex_derivatives(
+        *right_half.normal_derivatives(normal), *left_half.normal_derivatives(normal)
+    )
+    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    scaled = g * _INV_4PI
+    outputs = ca.cse(
+        [velocity, ca.dot(normal, velocity), scaled * d_field, scaled * d_left, scaled * d_right]
+    )
     return ca.Function(
         "vlm_normal_pair",
         [field, weight, left, right, g, normal],
@@ -281,9 +405,8 @@ def induced_velocities(n_panels: int) -> ca.Function:
     m = n_panels
     field, weight, left, right, g = _pair_symbols()
     right_half, left_half = _halves(field, weight, left, right)
-    pair = ca.Function(
-        "vlm_pair_value", [field, weight, left, right, g], [g * (right_half + left_half)]
-    )
+    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    pair = ca.Function("vlm_pair_value", [field, weight, left, right, g], [g * velocity])
     over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4], [])
     field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
     column = ca.Function(

@@ -108,6 +108,32 @@ def test_the_pair_kernel_adds_the_mirrored_left_half_and_its_derivatives_are_exa
 
 
 @pytest.mark.parametrize("bound_weight", [1.0, 0.0], ids=["with_bound_leg", "bound_leg_masked"])
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_the_pair_kernels_written_out_derivatives_are_casadis_to_round_off(
+    bound_weight: float, seed: int
+):
+    """The kernel's derivatives are written by hand (no divisions); CasADi's automatic
+    differentiation of `horseshoe_velocity` for both halves gives the same numbers to ~1e-13."""
+    rng = np.random.default_rng(seed)
+    field, left, right = rng.normal(size=3), rng.normal(size=3), rng.normal(size=3)
+    g = 0.7
+    points = [ca.SX.sym(name, 3) for name in ("field", "left", "right")]
+    at, start, end = points
+    mirror = ca.DM([1.0, -1.0, 1.0])
+    both_halves = horseshoe_velocity(at, start, end, bound_weight) + horseshoe_velocity(
+        at, mirror * end, mirror * start
+    )
+    automatic = ca.Function(
+        "automatic", points, [both_halves] + [g * ca.jacobian(both_halves, p).T for p in points]
+    )
+    expected = [np.array(v) for v in automatic(field, left, right)]
+    ours = [np.array(v) for v in pair_kernel()(field, bound_weight, left, right, g)]
+    for mine, theirs in zip(ours, expected, strict=True):
+        scale = np.max(np.abs(theirs))
+        np.testing.assert_allclose(mine, theirs, rtol=0, atol=1e-13 * scale)
+
+
+@pytest.mark.parametrize("bound_weight", [1.0, 0.0], ids=["with_bound_leg", "bound_leg_masked"])
 def test_the_normal_pair_kernel_is_the_pair_kernel_seen_along_the_normal(bound_weight: float):
     """Tangency's kernel: n . v and n^T times each 3 x 3 derivative block, to round-off."""
     rng = np.random.default_rng(7)
