@@ -32,6 +32,7 @@ import subprocess
 import tempfile
 import threading
 from pathlib import Path
+from typing import Literal
 
 import casadi as ca
 import numpy as np
@@ -50,8 +51,10 @@ __all__ = ["CompiledModel", "build_model", "cache_dir", "compilation_enabled"]
 log = logging.getLogger(__name__)
 
 # -O3 gave no measurable gain and compiles slower; no FMA contraction keeps the library
-# bit-identical to the virtual machine on every architecture.
-_FLAGS = ("-O2", "-ffp-contract=off")
+# bit-identical to the virtual machine on every architecture. Without semantic interposition the
+# compiler may inline CasADi's small helpers (casadi_sq, casadi_copy, ...) into the kernels, as
+# it could not in a shared library otherwise: 10-13 % off the Jacobian, the same bits.
+_FLAGS = ("-O2", "-ffp-contract=off", "-fno-semantic-interposition")
 
 
 def cache_dir() -> Path:
@@ -75,10 +78,16 @@ def _library_path(layout: Layout) -> Path:
 
 
 class _BufferedCall:
-    """Calls a CasADi Function through preallocated buffers (4x cheaper than f(x, p))."""
+    """Calls a CasADi Function through preallocated buffers (4x cheaper than f(x, p)).
 
-    def __init__(self, function: ca.Function) -> None:
+    Outputs are copied out of the buffers, in C order, or with `column_major` in the Fortran
+    order CasADi writes them: the Jacobians go on to LAPACK, which factorises Fortran-ordered
+    matrices, so neither their copy nor the LU factorisation transposes them.
+    """
+
+    def __init__(self, function: ca.Function, column_major: bool = False) -> None:
         self._lock = threading.Lock()
+        self._order: Literal["F", "C"] = "F" if column_major else "C"
         self._x = np.zeros(function.nnz_in(0))
         self._p = np.zeros(function.nnz_in(1))
         self._outputs = [np.zeros(function.size_out(i), order="F") for i in range(function.n_out())]
@@ -94,10 +103,20 @@ class _BufferedCall:
             self._x[:] = x
             self._p[:] = p
             self._evaluate()
-            return [out.copy(order="C") for out in self._outputs]
+            return [out.copy(order=self._order) for out in self._outputs]
 
 
 _Functions = tuple[ca.Function, ca.Function, ca.Function]
+
+
+def _buffered_calls(functions: _Functions) -> list[_BufferedCall]:
+    """The coupled function's outputs (Jacobians) column-major, the others in C order."""
+    coupled, residual, panel_loads = functions
+    return [
+        _BufferedCall(coupled, column_major=True),
+        _BufferedCall(residual),
+        _BufferedCall(panel_loads),
+    ]
 
 
 def _symbolic_functions(layout: Layout) -> _Functions:
@@ -117,7 +136,7 @@ class CompiledModel:
 
     def __init__(self, layout: Layout, functions: _Functions) -> None:
         self.layout = layout
-        self._calls = [_BufferedCall(function) for function in functions]
+        self._calls = _buffered_calls(functions)
         self.compiled = False
         self._compile_thread: threading.Thread | None = None
 
@@ -195,12 +214,11 @@ class CompiledModel:
 
     def _use_library(self, library: Path) -> None:
         tag = f"{self.layout.n}_{self.layout.chordwise}"
-        names = (
-            f"flexwing_coupled_{tag}",
-            f"flexwing_residual_{tag}",
-            f"flexwing_panel_loads_{tag}",
+        coupled, residual, panel_loads = (
+            ca.external(f"flexwing_{function}_{tag}", str(library))
+            for function in ("coupled", "residual", "panel_loads")
         )
-        calls = [_BufferedCall(ca.external(name, str(library))) for name in names]
+        calls = _buffered_calls((coupled, residual, panel_loads))
         self._calls = calls  # one assignment: a concurrent call sees either set, never a mix
         self.compiled = True
 
