@@ -151,13 +151,14 @@ class _Landing:
 
 
 def _factor(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """LU factors of a square matrix, or None if it is singular (or not finite)."""
+    """LU factors of a square matrix, or None if it is singular (or not finite). The matrix is
+    factorised in place: pass one nobody else holds (a fresh J0 + q J1)."""
     if not np.all(np.isfinite(matrix)):
         return None
     with warnings.catch_warnings():
         warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
         try:
-            factors = scipy.linalg.lu_factor(matrix, check_finite=False)
+            factors = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
         except (np.linalg.LinAlgError, ValueError, scipy.linalg.LinAlgWarning):
             return None
     return factors if np.all(np.diag(factors[0]) != 0) else None
