@@ -27,11 +27,13 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
+import scipy.linalg
 
 from solver.evaluation import Evaluation
 from solver.layout import Layout
@@ -207,24 +209,42 @@ def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarr
     return matrix
 
 
-def _tangent(
-    evaluation: Evaluation, q: float, scale: np.ndarray, previous: np.ndarray
-) -> np.ndarray:
-    """Unit tangent at (x, q), oriented so that its projection on `previous` is positive."""
-    rhs = np.zeros(previous.size)
-    rhs[-1] = 1.0
-    tangent = np.linalg.solve(_bordered(evaluation, q, scale, previous), rhs)
-    return tangent / np.linalg.norm(tangent)
+_Factors = tuple[np.ndarray, np.ndarray]
 
 
-def _orientation(evaluation: Evaluation, q: float, scale: np.ndarray, tangent: np.ndarray) -> int:
-    """Sign of det [[J, r1], [t^T]]: constant along a branch, flips across a bifurcation.
+def _factor(matrix: np.ndarray) -> _Factors:
+    """LU factors of a bordered matrix (overwritten); np.linalg.LinAlgError if it is singular
+    or not finite."""
+    if not np.all(np.isfinite(matrix)):
+        raise np.linalg.LinAlgError("non-finite bordered Jacobian")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)  # judged by the pivots below
+        lu, pivots = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
+    if np.any(np.diag(lu) == 0):
+        raise np.linalg.LinAlgError("singular bordered Jacobian")
+    return lu, pivots
 
-    (A fold does not flip it: there the augmented Jacobian keeps full rank. dq/ds, which equals
-    det J over this determinant, flips through det J instead.)
+
+def _tangent_and_orientation(factors: _Factors) -> tuple[np.ndarray, int]:
+    """From the factors of B = [[J scale_x, r1 scale_q], [previous^T]]: the unit tangent at
+    (x, q), oriented so that its projection on `previous` is positive, and the orientation,
+    the sign of det [[J, r1], [t^T]]: constant along a branch, flips across a bifurcation.
+
+    With u = B^{-1} e_last the tangent is t = u / |u|, and previous . u = 1; the orientation's
+    matrix is B with its last row moved by (t - previous)^T, so by the matrix determinant lemma
+    its determinant is det(B) (1 + (t - previous) . u) = det(B) |u|: the sign of det(B), which
+    the LU factors give for free (a second factorisation saved per branch point).
+
+    (A fold does not flip the orientation: there the augmented Jacobian keeps full rank. dq/ds,
+    which equals det J over this determinant, flips through det J instead.)
     """
-    sign, _ = np.linalg.slogdet(_bordered(evaluation, q, scale, tangent))
-    return int(sign)
+    lu, pivots = factors
+    last = np.zeros(lu.shape[0])
+    last[-1] = 1.0
+    u = scipy.linalg.lu_solve(factors, last, check_finite=False)
+    swaps = int(np.count_nonzero(pivots != np.arange(pivots.size)))
+    sign = (-1) ** swaps * int(np.prod(np.sign(np.diag(lu))))
+    return u / np.linalg.norm(u), sign
 
 
 @dataclass
@@ -280,28 +300,32 @@ class _Tracer:
         else:
             r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
             evaluation, stale = Evaluation(r0, r1, jacobians.jacobian0, jacobians.jacobian1), True
+        # The factors of the last correction's bordered matrix, and whose Jacobians they hold:
+        # a point that converges on those Jacobians takes its tangent from the same factors.
+        factors: _Factors | None = None
+        factored: np.ndarray | None = None
         for iteration in range(self.settings.max_corrector_iterations + 1):
             q = w[-1] * self.scale[-1]
             residual = evaluation.residual(q)
             if not np.all(np.isfinite(residual)):
                 return None
-            if np.max(np.abs(residual)) <= self.settings.tolerance and iteration > 0:
-                try:
-                    tangent = _tangent(evaluation, q, self.scale, normal)
-                except np.linalg.LinAlgError:
-                    return None
-                orientation = _orientation(evaluation, q, self.scale, tangent)
-                displacement = float(np.linalg.norm(w - w_start))
-                return _Corrected(
-                    w, evaluation, tangent, first_correction, displacement, orientation
-                )
-            if iteration == self.settings.max_corrector_iterations:
-                return None
-            rhs = np.append(residual, normal @ w - offset)
             try:
-                update = np.linalg.solve(_bordered(evaluation, q, self.scale, normal), rhs)
+                if np.max(np.abs(residual)) <= self.settings.tolerance and iteration > 0:
+                    if factors is None or factored is not evaluation.jacobian0:
+                        factors = _factor(_bordered(evaluation, q, self.scale, normal))
+                    tangent, orientation = _tangent_and_orientation(factors)
+                    displacement = float(np.linalg.norm(w - w_start))
+                    return _Corrected(
+                        w, evaluation, tangent, first_correction, displacement, orientation
+                    )
+                if iteration == self.settings.max_corrector_iterations:
+                    return None
+                factors = _factor(_bordered(evaluation, q, self.scale, normal))
             except np.linalg.LinAlgError:
                 return None
+            factored = evaluation.jacobian0
+            rhs = np.append(residual, normal @ w - offset)
+            update = scipy.linalg.lu_solve(factors, rhs, check_finite=False)
             if iteration == 0:
                 first_correction = float(np.linalg.norm(update))
             w = w - update
@@ -346,8 +370,9 @@ class BranchTracer:
         evaluation = self._tracer.evaluate(w)
         upward = np.zeros(w.size)
         upward[-1] = 1.0
-        tangent = _tangent(evaluation, 0.0, scale, upward)
-        self._orientation = _orientation(evaluation, 0.0, scale, tangent)
+        tangent, self._orientation = _tangent_and_orientation(
+            _factor(_bordered(evaluation, 0.0, scale, upward))
+        )
         # The last point's evaluation: its Jacobians serve the next predictor step's first
         # correction (part of the step state, like the step length).
         self._evaluation = evaluation

@@ -60,6 +60,27 @@ def test_the_branch_rises_in_q_until_its_fold(system):
     assert branch.fold is not None and branch.fold.dq_ds == pytest.approx(0.0, abs=1e-5)
 
 
+def test_each_branch_points_tangent_spans_the_augmented_jacobians_null_space(system):
+    """A branch point's tangent t (unit, scaled coordinates) solves [J scale_x, r1 scale_q] t = 0
+    with the Jacobians it carries (evaluated one small correction away), and the orientation
+    taken from the tangent solve's LU factors is the sign of det [[J, r1], [t^T]] itself."""
+    tracer = _tracer(system)
+    branch = tracer.view(0.5 * DENSITY * 25.0**2)
+    scale = branch.scale
+    for point in branch.points[1:]:
+        evaluation = system.evaluate(point.state)
+        q = point.dynamic_pressure
+        augmented = np.column_stack(
+            [evaluation.jacobian(q) * scale[:-1], evaluation.r1 * scale[-1]]
+        )
+        t = point.tangent
+        assert np.linalg.norm(t) == pytest.approx(1.0, abs=1e-14)
+        # Jacobians one correction (~1e-6 scaled) from the point: the tangent is exact to ~that.
+        assert np.linalg.norm(augmented @ t) < 1e-4 * np.linalg.norm(augmented)
+        sign, _ = np.linalg.slogdet(np.vstack([augmented, t]))
+        assert sign == tracer._orientation
+
+
 def test_the_hermite_start_lies_within_one_newton_step_of_the_branch(system):
     branch = _tracer(system).view(0.5 * DENSITY * 25.0**2)
     q = 0.5 * DENSITY * 14.3**2
