@@ -77,9 +77,9 @@ class _Horseshoe:
         k = w (1/|a| + 1/|b|) / (|a||b| + a.b + 1 - w),   f_a = 1/(|a| (|a| - a_x)),
 
     and its derivatives in a and b are written out by hand from the same reciprocals: the
-    derivative graph has no division and no square root (CasADi's own rules would put ~40
-    divisions into each pair's derivatives, most of the kernel's time). tests/solver/test_vlm.py
-    checks them against CasADi's differentiation of `horseshoe_velocity`.
+    derivative graph has no division and no square root, where CasADi's own differentiation
+    rules put ~40 divisions into each horseshoe's. tests/solver/test_vlm.py checks them against
+    CasADi's differentiation of `horseshoe_velocity`.
     """
 
     def __init__(self, a: ca.SX, b: ca.SX, bound_weight: ca.SX | float) -> None:
