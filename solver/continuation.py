@@ -43,7 +43,9 @@ __all__ = [
     "BranchPoint",
     "BranchTracer",
     "ContinuationSettings",
+    "Factors",
     "branch_scales",
+    "factorise",
     "scaled_norm",
 ]
 
@@ -209,23 +211,24 @@ def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarr
     return matrix
 
 
-_Factors = tuple[np.ndarray, np.ndarray]
+Factors = tuple[np.ndarray, np.ndarray]
 
 
-def _factor(matrix: np.ndarray) -> _Factors:
-    """LU factors of a bordered matrix (overwritten); np.linalg.LinAlgError if it is singular
-    or not finite."""
+def factorise(matrix: np.ndarray) -> Factors | None:
+    """LU factors (scipy's) of a square matrix, or None if it is singular or not finite. The
+    matrix is factorised in place: pass one nobody else holds (a fresh J0 + q J1)."""
     if not np.all(np.isfinite(matrix)):
-        raise np.linalg.LinAlgError("non-finite bordered Jacobian")
+        return None
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)  # judged by the pivots below
-        lu, pivots = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
-    if np.any(np.diag(lu) == 0):
-        raise np.linalg.LinAlgError("singular bordered Jacobian")
-    return lu, pivots
+        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
+        try:
+            factors = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError, scipy.linalg.LinAlgWarning):
+            return None
+    return factors if np.all(np.diag(factors[0]) != 0) else None
 
 
-def _tangent_and_orientation(factors: _Factors) -> tuple[np.ndarray, int]:
+def _tangent_and_orientation(factors: Factors) -> tuple[np.ndarray, int] | None:
     """From the factors of B = [[J scale_x, r1 scale_q], [previous^T]]: the unit tangent at
     (x, q), oriented so that its projection on `previous` is positive, and the orientation,
     the sign of det [[J, r1], [t^T]]: constant along a branch, flips across a bifurcation.
@@ -237,14 +240,19 @@ def _tangent_and_orientation(factors: _Factors) -> tuple[np.ndarray, int]:
 
     (A fold does not flip the orientation: there the augmented Jacobian keeps full rank. dq/ds,
     which equals det J over this determinant, flips through det J instead.)
+
+    None if the factors overflowed (a tangent that is not finite).
     """
     lu, pivots = factors
     last = np.zeros(lu.shape[0])
     last[-1] = 1.0
     u = scipy.linalg.lu_solve(factors, last, check_finite=False)
+    length = float(np.linalg.norm(u))
+    if not math.isfinite(length):
+        return None
     swaps = int(np.count_nonzero(pivots != np.arange(pivots.size)))
     sign = (-1) ** swaps * int(np.prod(np.sign(np.diag(lu))))
-    return u / np.linalg.norm(u), sign
+    return u / length, sign
 
 
 @dataclass
@@ -302,26 +310,28 @@ class _Tracer:
             evaluation, stale = Evaluation(r0, r1, jacobians.jacobian0, jacobians.jacobian1), True
         # The factors of the last correction's bordered matrix, and whose Jacobians they hold:
         # a point that converges on those Jacobians takes its tangent from the same factors.
-        factors: _Factors | None = None
+        factors: Factors | None = None
         factored: np.ndarray | None = None
         for iteration in range(self.settings.max_corrector_iterations + 1):
             q = w[-1] * self.scale[-1]
             residual = evaluation.residual(q)
             if not np.all(np.isfinite(residual)):
                 return None
-            try:
-                if np.max(np.abs(residual)) <= self.settings.tolerance and iteration > 0:
-                    if factors is None or factored is not evaluation.jacobian0:
-                        factors = _factor(_bordered(evaluation, q, self.scale, normal))
-                    tangent, orientation = _tangent_and_orientation(factors)
-                    displacement = float(np.linalg.norm(w - w_start))
-                    return _Corrected(
-                        w, evaluation, tangent, first_correction, displacement, orientation
-                    )
-                if iteration == self.settings.max_corrector_iterations:
+            if np.max(np.abs(residual)) <= self.settings.tolerance and iteration > 0:
+                if factors is None or factored is not evaluation.jacobian0:
+                    factors = factorise(_bordered(evaluation, q, self.scale, normal))
+                found = None if factors is None else _tangent_and_orientation(factors)
+                if found is None:
                     return None
-                factors = _factor(_bordered(evaluation, q, self.scale, normal))
-            except np.linalg.LinAlgError:
+                tangent, orientation = found
+                displacement = float(np.linalg.norm(w - w_start))
+                return _Corrected(
+                    w, evaluation, tangent, first_correction, displacement, orientation
+                )
+            if iteration == self.settings.max_corrector_iterations:
+                return None
+            factors = factorise(_bordered(evaluation, q, self.scale, normal))
+            if factors is None:
                 return None
             factored = evaluation.jacobian0
             rhs = np.append(residual, normal @ w - offset)
@@ -370,9 +380,11 @@ class BranchTracer:
         evaluation = self._tracer.evaluate(w)
         upward = np.zeros(w.size)
         upward[-1] = 1.0
-        tangent, self._orientation = _tangent_and_orientation(
-            _factor(_bordered(evaluation, 0.0, scale, upward))
-        )
+        factors = factorise(_bordered(evaluation, 0.0, scale, upward))
+        found = None if factors is None else _tangent_and_orientation(factors)
+        if found is None:
+            raise np.linalg.LinAlgError("the augmented Jacobian at the jig is singular")
+        tangent, self._orientation = found
         # The last point's evaluation: its Jacobians serve the next predictor step's first
         # correction (part of the step state, like the step length).
         self._evaluation = evaluation

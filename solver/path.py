@@ -22,14 +22,13 @@ the same sequence of steps, hence the same bits, whatever was asked before.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 
-from solver.continuation import scaled_norm
+from solver.continuation import factorise, scaled_norm
 from solver.evaluation import Evaluation
 
 __all__ = ["PathResult", "PathSettings", "follow"]
@@ -150,20 +149,6 @@ class _Landing:
     shorten: float | None = None  # the step's predicted move is too long: shorten by this
 
 
-def _factor(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """LU factors of a square matrix, or None if it is singular (or not finite). The matrix is
-    factorised in place: pass one nobody else holds (a fresh J0 + q J1)."""
-    if not np.all(np.isfinite(matrix)):
-        return None
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
-        try:
-            factors = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
-        except (np.linalg.LinAlgError, ValueError, scipy.linalg.LinAlgWarning):
-            return None
-    return factors if np.all(np.diag(factors[0]) != 0) else None
-
-
 def _step(
     evaluate: Callable[[np.ndarray], Evaluation],
     residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
@@ -192,7 +177,7 @@ def _step(
     prediction followed (Deuflhard's monotonicity test for continuation correctors).
     """
     q_next = q_now + dq
-    factors = _factor(evaluation.jacobian(q_next))
+    factors = factorise(evaluation.jacobian(q_next))
     if factors is None:
         return _Landing(False, x, evaluation, 0, np.inf, "singular Jacobian")
     predicted = x - scipy.linalg.lu_solve(factors, evaluation.residual(q_next), check_finite=False)
@@ -217,7 +202,7 @@ def _step(
         if iteration == settings.max_corrector_iterations:
             break
         if iteration > 0:
-            factors = _factor(current.jacobian(q_next))
+            factors = factorise(current.jacobian(q_next))
             if factors is None:
                 return _Landing(False, x, evaluation, iteration, np.inf, "singular Jacobian")
         correction = scipy.linalg.lu_solve(factors, r, check_finite=False)
