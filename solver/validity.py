@@ -229,29 +229,32 @@ def lift_sensitivity(
     rigid_state = at_rest(system).rigid_state(system.alpha)
     if is_unloaded(system, rigid_state):
         return None
+    # Not `jig(system)`: a trimmed answer's alpha has no jig of its own, and its evaluation
+    # would cost a Jacobian; the rigid loads alone are one panel-loads call.
     rigid = rigid_loads(system, rigid_state).lift  # [m^2] L_rigid / q, linear in q
     try:
         rate = np.linalg.solve(evaluation.jacobian(q), -evaluation.r1)  # dx/dq
     except np.linalg.LinAlgError:
         return None
-    *_, lift = system.residual_with_lift(x)
-    flexible = lift + q * _lift_derivative_along(system, x, rate)  # [m^2] dL/dq
-    ratio = flexible / rigid
+    lift, derivative = _lift_along(system, x, rate)
+    ratio = (lift + q * derivative) / rigid  # [m^2] dL/dq over L_rigid / q
     return ratio if math.isfinite(ratio) else None
 
 
-def _lift_derivative_along(system: CoupledSystem, x: np.ndarray, direction: np.ndarray) -> float:
-    """[m^2] d(lift per unit q)/dx . direction, by a central difference of the residual
-    function's lift over a move of `_LIFT_STEP` in the scaled coordinates of
-    `solver.continuation` (truncation ~1e-10 relative, round-off ~1e-11): two residual
-    evaluations, a tenth of the coupled evaluation that an exact gradient would take."""
+def _lift_along(system: CoupledSystem, x: np.ndarray, direction: np.ndarray) -> tuple[float, float]:
+    """[m^2] the lift per unit q at x and its derivative d(lift)/dx . direction, from the
+    residual function's lift a move of `_LIFT_STEP` (scaled coordinates of
+    `solver.continuation`) ahead of x and behind it: a central difference (truncation ~1e-10
+    relative, round-off ~1e-11) and their mean. Two residual evaluations, against the coupled
+    evaluation (a Jacobian) that the exact gradient would take."""
     size = float(np.linalg.norm(direction / system.scale(1.0)[:-1]))
     if not (math.isfinite(size) and size > 0):
-        return 0.0 if size == 0 else math.nan
+        *_, lift = system.residual_with_lift(x)
+        return lift, 0.0 if size == 0 else math.nan
     step = _LIFT_STEP / size
     *_, ahead = system.residual_with_lift(x + step * direction)
     *_, behind = system.residual_with_lift(x - step * direction)
-    return (ahead - behind) / (2 * step)
+    return (ahead + behind) / 2, (ahead - behind) / (2 * step)
 
 
 def _near_divergence(
