@@ -83,8 +83,10 @@ def branch(system: CoupledSystem, q_limit: float) -> Branch:
     key = ("branch", *system.key)
     entry = cached(key, lambda: _CachedTracer(system), lambda e: e.tracer.nbytes)
     with entry.lock:
+        traced = len(entry.tracer.points)
         view = entry.tracer.view(q_limit)
-        resize(key, entry, entry.tracer.nbytes)
+        if len(entry.tracer.points) != traced:  # traced further: record its new size
+            resize(key, entry, entry.tracer.nbytes)
     return view
 
 
