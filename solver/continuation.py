@@ -510,7 +510,9 @@ def _locate_fold(
     Points are parameterised by their offset sigma along `before`'s tangent (the hyperplanes of
     the step that bracketed the fold); dq/ds(sigma) changes sign on [0, sigma_after], and
     Illinois regula falsi finds its root, each trial point started from the chord between the
-    current bracket ends.
+    current bracket ends. The first trial is where the cubic through both ends' q and
+    dq/dsigma turns: near a fold q is quadratic in sigma, which a straight line through the
+    ends' dq/ds (regula falsi's first guess) misses by far more.
     """
     scale = tracer.scale
     normal = before.tangent
@@ -519,6 +521,12 @@ def _locate_fold(
     low = (0.0, before.dq_ds, w_before)
     high = (float(normal @ (w_after - w_before)), after.dq_ds, w_after)
     best = after if abs(after.dq_ds) < before.dq_ds else before
+    first = _turning_point(
+        high[0],
+        float(w_after[-1] - w_before[-1]),
+        before.dq_ds,
+        after.dq_ds / float(normal @ after.tangent),
+    )
     side = 0
     for _ in range(tracer.settings.max_fold_iterations):
         (s_low, f_low, w_low), (s_high, f_high, w_high) = low, high
@@ -526,7 +534,10 @@ def _locate_fold(
             break
         if not s_high - s_low > 0:  # the bracket has no width left in floating point
             break
-        sigma = s_low - f_low * (s_high - s_low) / (f_high - f_low)
+        if first is not None:
+            sigma, first = first, None
+        else:
+            sigma = s_low - f_low * (s_high - s_low) / (f_high - f_low)
         fraction = (sigma - s_low) / (s_high - s_low)
         start = w_low + fraction * (w_high - w_low)
         corrected = tracer.correct(start, normal, float(normal @ w_before) + sigma)
@@ -547,3 +558,26 @@ def _locate_fold(
                 low = (s_low, f_low / 2, w_low)
             side = -1
     return best
+
+
+def _turning_point(width: float, rise: float, slope_start: float, slope_end: float) -> float | None:
+    """Where the cubic Hermite q(sigma) on [0, width] through q(0) = 0, q(width) = rise,
+    q'(0) = slope_start > 0 and q'(width) = slope_end <= 0 has q' = 0 (scaled units), or None
+    if that is not strictly inside. With t = sigma / width, q'(sigma) = a t^2 + b t + c."""
+    if not (width > 0 and slope_start > 0 >= slope_end):
+        return None
+    chord = rise / width
+    a = 3 * (slope_start + slope_end) - 6 * chord
+    b = 6 * chord - 4 * slope_start - 2 * slope_end
+    c = slope_start
+    if abs(a) <= 1e-12 * (abs(b) + abs(c)):
+        t = -c / b if b != 0 else math.nan
+    else:
+        root = math.sqrt(max(b * b - 4 * a * c, 0.0))
+        # The root in (0, 1): q' falls from c > 0 to a + b + c <= 0 across it (numerically
+        # stable form of the two roots).
+        q = -0.5 * (b + math.copysign(root, b))
+        candidates = [q / a, c / q if q != 0 else math.nan]
+        inside = [t for t in candidates if 0 < t < 1]
+        t = min(inside) if inside else math.nan
+    return t * width if 0 < t < 1 else None

@@ -8,7 +8,7 @@ import pytest
 
 from solver import FlightCondition, NoEquilibrium, Wing, solve
 from solver.branch import pressure_scale
-from solver.continuation import BranchTracer
+from solver.continuation import BranchTracer, _turning_point
 from solver.jig import jig
 from solver.system import CoupledSystem
 from tests.study import DENSITY, study_wing
@@ -79,6 +79,23 @@ def test_each_branch_points_tangent_spans_the_augmented_jacobians_null_space(sys
         assert np.linalg.norm(augmented @ t) < 1e-4 * np.linalg.norm(augmented)
         sign, _ = np.linalg.slogdet(np.vstack([augmented, t]))
         assert sign == tracer._orientation
+
+
+@pytest.mark.parametrize(
+    ("width", "turn"), [(1.5, 1.0), (1.0, 0.3), (4.0, 3.9)], ids=["middle", "early", "late"]
+)
+def test_the_folds_first_trial_is_where_a_quadratic_q_turns(width: float, turn: float):
+    """Near a fold q(sigma) is quadratic, q = sigma (2 turn - sigma): the cubic through both
+    bracket ends' q and dq/dsigma is that parabola, and turns exactly at its vertex."""
+    rise = width * (2 * turn - width)
+    start, end = 2 * turn, 2 * (turn - width)
+    assert _turning_point(width, rise, start, end) == pytest.approx(turn, rel=1e-12)
+
+
+def test_the_folds_first_trial_needs_a_bracket():
+    assert _turning_point(1.0, 0.5, 1.0, 0.5) is None  # q still rising at the far end
+    assert _turning_point(1.0, 0.5, -1.0, -2.0) is None  # falling from the start
+    assert _turning_point(0.0, 0.0, 1.0, -1.0) is None  # no width
 
 
 def test_the_hermite_start_lies_within_one_newton_step_of_the_branch(system):
