@@ -291,6 +291,7 @@ class _Tracer:
         normal: np.ndarray,
         offset: float,
         jacobians: Evaluation | None = None,
+        chord_finish: bool = False,
     ) -> _Corrected | None:
         """Newton on r = 0 within the hyperplane normal . w = offset, from w_start.
 
@@ -300,7 +301,16 @@ class _Tracer:
         After later corrections the residual alone is checked first; the Jacobians are evaluated
         only where it has not converged, so the corrected point carries those of the iterate
         one correction before it (which its tangent uses: an error of the order of that last,
-        small correction)."""
+        small correction).
+
+        `chord_finish`: where the residual has not converged after a Newton correction, first
+        try one more correction on the same factors (a chord step, a residual's cost) before
+        evaluating Jacobians there. Newton has already squared the error, so the chord step
+        usually converges; the point then carries the Jacobians of the iterate two corrections
+        back, and its tangent is good to ~1e-4 instead of ~1e-8. A continuation step takes one
+        Jacobian instead of two, and the branch's Hermite starts still converge in the same
+        Newton iterations (measured on 72 wings: 602 Jacobians for their known-wing sweeps
+        against 610). The fold's trials do not take it: the fold is located on exact tangents."""
         w = w_start.copy()
         first_correction = 0.0
         if jacobians is None:
@@ -342,15 +352,29 @@ class _Tracer:
             if stale:  # the chord step's Jacobians are a whole step away: evaluate them here
                 evaluation, stale = self.evaluate(w), False
                 continue
-            r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
-            q = w[-1] * self.scale[-1]
-            if np.all(np.isfinite(r0 + q * r1)) and np.max(np.abs(r0 + q * r1)) <= (
-                self.settings.tolerance
-            ):
+            r0, r1, q = self._residual(w)
+            if chord_finish and not self._converged(r0, r1, q):
+                chord = scipy.linalg.lu_solve(
+                    factors, np.append(r0 + q * r1, normal @ w - offset), check_finite=False
+                )
+                w_chord = w - chord
+                chord_r0, chord_r1, chord_q = self._residual(w_chord)
+                if self._converged(chord_r0, chord_r1, chord_q):
+                    w, r0, r1, q = w_chord, chord_r0, chord_r1, chord_q
+            if self._converged(r0, r1, q):
                 evaluation = Evaluation(r0, r1, evaluation.jacobian0, evaluation.jacobian1)
             else:
                 evaluation = self.evaluate(w)
         return None
+
+    def _residual(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """r0, r1 at the scaled point w, and its q [Pa]."""
+        r0, r1 = self.residual_x(w[:-1] * self.scale[:-1])
+        return r0, r1, float(w[-1] * self.scale[-1])
+
+    def _converged(self, r0: np.ndarray, r1: np.ndarray, q: float) -> bool:
+        r = r0 + q * r1
+        return bool(np.all(np.isfinite(r)) and np.max(np.abs(r)) <= self.settings.tolerance)
 
 
 class BranchTracer:
@@ -443,7 +467,11 @@ class BranchTracer:
         w = _scaled(current.state, current.dynamic_pressure, self.scale)
         predicted = w + step * current.tangent
         corrected = self._tracer.correct(
-            predicted, current.tangent, float(current.tangent @ predicted), self._evaluation
+            predicted,
+            current.tangent,
+            float(current.tangent @ predicted),
+            self._evaluation,
+            chord_finish=True,
         )
         turn = (
             math.acos(min(1.0, float(corrected.tangent @ current.tangent)))
