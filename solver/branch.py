@@ -74,6 +74,7 @@ class _CachedTracer:
             system.residual,
             np.array(start.state),
             system.scale(pressure_scale(system)),
+            jig_evaluation=start.evaluation,
         )
         self.lock = threading.Lock()
 

@@ -387,7 +387,9 @@ class BranchTracer:
     prefix a fresh trace to q_limit would have produced.
 
     `evaluate(x)` returns r0, r1, J0, J1 at x for the wing and alpha of interest, `residual(x)`
-    r0 and r1 alone; `jig_state` must solve r0 = 0 (the rigid solution, exact at q = 0).
+    r0 and r1 alone; `jig_state` must solve r0 = 0 (the rigid solution, exact at q = 0), and
+    `jig_evaluation`, if given, is `evaluate(jig_state)` already made (the jig's own: one
+    evaluation fewer, the same bits).
     """
 
     def __init__(
@@ -397,11 +399,12 @@ class BranchTracer:
         jig_state: np.ndarray,
         scale: np.ndarray,
         settings: ContinuationSettings | None = None,
+        jig_evaluation: Evaluation | None = None,
     ) -> None:
         self._tracer = _Tracer(evaluate, residual, scale, settings or ContinuationSettings())
         self.scale = scale
         w = _scaled(jig_state, 0.0, scale)
-        evaluation = self._tracer.evaluate(w)
+        evaluation = jig_evaluation if jig_evaluation is not None else self._tracer.evaluate(w)
         upward = np.zeros(w.size)
         upward[-1] = 1.0
         factors = factorise(_bordered(evaluation, 0.0, scale, upward))
