@@ -607,8 +607,8 @@ def _turning_point(width: float, rise: float, slope_start: float, slope_end: flo
         root = math.sqrt(max(b * b - 4 * a * c, 0.0))
         # The root in (0, 1): q' falls from c > 0 to a + b + c <= 0 across it (numerically
         # stable form of the two roots).
-        q = -0.5 * (b + math.copysign(root, b))
-        candidates = [q / a, c / q if q != 0 else math.nan]
+        half = -0.5 * (b + math.copysign(root, b))
+        candidates = [half / a, c / half if half != 0 else math.nan]
         inside = [t for t in candidates if 0 < t < 1]
         t = min(inside) if inside else math.nan
     return t * width if 0 < t < 1 else None
