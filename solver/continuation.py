@@ -15,11 +15,14 @@ Each step: predictor w + ds t; corrector Newton on the bordered system
     [J, r1 ] dw = -[ r(x, q)                ]
     [ t^T   ]       [ t^T (w - w_predicted) ]
 (columns scaled). The first correction uses the previous point's Jacobians (a chord step: the
-prediction needs only its residual), each later one the Jacobians of the latest iterate; the
-tangent at the converged point costs one more linear solve with the evaluation Newton already
-made there. The fold, once bracketed by a sign change of dq/ds, is located by regula falsi
-(Illinois) on dq/ds along the hyperplanes of the last step: near a fold dq/ds is linear in
-arclength and q quadratic, so a few iterations give q to ~1e-10 relative.
+prediction needs only its residual), the next one Jacobians evaluated at the first corrected
+point, and a step finishes with a chord correction on those same factors: one Jacobian per step.
+The tangent at the converged point (and the orientation, the sign of the bordered determinant)
+comes from the last factorisation with one more triangular solve. The fold, once bracketed by a
+sign change of dq/ds, is located along the hyperplanes of the last step, first where the cubic
+through the bracket ends' q and dq/ds turns, then by regula falsi (Illinois) on dq/ds, each
+trial on freshly evaluated Jacobians: near a fold dq/ds is linear in arclength and q quadratic,
+so two or three trials give q to ~1e-10 relative.
 """
 
 from __future__ import annotations

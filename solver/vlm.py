@@ -211,6 +211,11 @@ def _halves(
     )
 
 
+def _velocity(right_half: _Horseshoe, left_half: _Horseshoe) -> ca.SX:
+    """(3,) [-] both halves' induced velocity per unit g (their 4 pi v summed, divided by 4 pi)."""
+    return (right_half.velocity() + left_half.velocity()) * _INV_4PI
+
+
 def _vertex_derivatives(
     right_da: ca.SX, right_db: ca.SX, left_da: ca.SX, left_db: ca.SX
 ) -> tuple[ca.SX, ca.SX, ca.SX]:
@@ -238,7 +243,7 @@ def pair_kernel() -> ca.Function:
     d_field, d_left, d_right = _vertex_derivatives(
         *right_half.derivatives(), *left_half.derivatives()
     )
-    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    velocity = _velocity(right_half, left_half)
     scaled = g * _INV_4PI
     outputs = ca.cse([velocity, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T])
     return ca.Function(
@@ -269,7 +274,7 @@ def normal_pair_kernel() -> ca.Function:
     d_field, d_left, d_right = _vertex_derivatives(
         *right_half.normal_derivatives(normal), *left_half.normal_derivatives(normal)
     )
-    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    velocity = _velocity(right_half, left_half)
     scaled = g * _INV_4PI
     outputs = ca.cse(
         [velocity, ca.dot(normal, velocity), scaled * d_field, scaled * d_left, scaled * d_right]
@@ -405,7 +410,7 @@ def induced_velocities(n_panels: int) -> ca.Function:
     m = n_panels
     field, weight, left, right, g = _pair_symbols()
     right_half, left_half = _halves(field, weight, left, right)
-    velocity = (right_half.velocity() + left_half.velocity()) * _INV_4PI
+    velocity = _velocity(right_half, left_half)
     pair = ca.Function("vlm_pair_value", [field, weight, left, right, g], [g * velocity])
     over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4], [])
     field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
