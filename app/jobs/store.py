@@ -3,7 +3,8 @@
 One thread owns the connection; the event loop hands it small operations through a queue
 (`write`: fire and forget, in order; `read`: awaitable) and never waits on the disk. The thread
 runs what is queued, then commits once: many item writes of a busy batch share one commit. A read
-sees every write queued before it.
+sees every write queued before it, and its answer is handed back only after that commit: what a
+client has read survives even a SIGKILL of the service.
 
 Tables:
 
@@ -30,6 +31,7 @@ import asyncio
 import concurrent.futures
 import contextlib
 import fcntl
+import functools
 import json
 import logging
 import os
@@ -179,12 +181,16 @@ class JobStore:
                     batch.append(self._tasks.get_nowait())
                 except queue.Empty:
                     break
+            answers = []
             for task in batch:
                 if task is _STOP:
                     stop = True
                 else:
-                    self._run(connection, *task)
+                    answers.append(self._run(connection, *task))
             connection.commit()
+            for answer in answers:
+                if answer is not None:
+                    answer()
         connection.close()
 
     @staticmethod
@@ -193,17 +199,16 @@ class JobStore:
         operation: Callable[..., Any],
         args: tuple[Any, ...],
         future: concurrent.futures.Future[Any] | None,
-    ) -> None:
+    ) -> Callable[[], None] | None:
+        """Run one operation; for a read, what hands its outcome back (after the commit)."""
         try:
             value = operation(connection, *args)
         except Exception as error:
             if future is None:
                 log.exception("jobs database: %s failed", operation.__name__)
-            else:
-                future.set_exception(error)
-            return
-        if future is not None:
-            future.set_result(value)
+                return None
+            return functools.partial(future.set_exception, error)
+        return None if future is None else functools.partial(future.set_result, value)
 
 
 # --------------------------------------------------------- operations (run in the thread)

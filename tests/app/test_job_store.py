@@ -1,0 +1,46 @@
+"""app.jobs.store: what a read hands back has been committed, so a client never sees an item
+that a SIGKILL of the service could still lose."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import sqlite3
+import threading
+from pathlib import Path
+
+from app.jobs import store
+
+WAIT = 10.0  # [s] guards a hang only; nothing here is timed
+
+
+def _items_on_disk(path: Path) -> list[str]:
+    """The item lines another connection sees: only what was committed."""
+    with contextlib.closing(sqlite3.connect(path)) as other:
+        return [line for (line,) in other.execute("SELECT line FROM items ORDER BY seq")]
+
+
+def test_a_read_answers_only_after_the_writes_before_it_are_committed(tmp_path: Path):
+    """One batch of the writer thread holds an item write, a read and a write that blocks: the
+    read's answer must wait for the batch's commit, and by then the item is on disk."""
+
+    async def scenario() -> None:
+        jobs = store.JobStore(tmp_path / "jobs.sqlite")
+        await jobs.open()
+        busy, blocker = threading.Event(), threading.Event()
+        # Keep the thread busy so that the next three operations are drained as one batch.
+        jobs.write(lambda connection: busy.wait(WAIT))
+        jobs.write(store.insert_item, "job", 0, 1, True, '{"index": 0}')
+        answer = asyncio.ensure_future(jobs.read(store.item_lines_by_answer, "job", 0, 10))
+        await asyncio.sleep(0)  # let the read queue itself
+        jobs.write(lambda connection: blocker.wait(WAIT))
+        busy.set()
+        await asyncio.sleep(0.2)  # the batch runs up to the blocking write
+        assert not answer.done(), "a read answered before its batch was committed"
+        assert _items_on_disk(tmp_path / "jobs.sqlite") == []
+        blocker.set()
+        assert await asyncio.wait_for(answer, WAIT) == [(1, '{"index": 0}')]
+        assert _items_on_disk(tmp_path / "jobs.sqlite") == ['{"index": 0}']
+        await jobs.close()
+
+    asyncio.run(scenario())
