@@ -54,6 +54,10 @@ __all__ = [
 
 # A scaled state (n + 1,) or one of its components: cubic Hermite interpolation serves both.
 _Value = TypeVar("_Value", float, np.ndarray)
+# Where the interpolating cubic reaches a requested q: Newton in tau in [0, 1] until its step is
+# round-off, safeguarded by bisection (which alone needs the 60 to reach round-off).
+_HERMITE_ITERATIONS = 60
+_HERMITE_TOLERANCE = 1e-15
 
 
 @dataclass(frozen=True)
@@ -166,21 +170,45 @@ class Branch:
                 + (tau3 - tau2) * h * end_slope
             )
 
+        def hermite_slope(
+            tau: float, start: float, start_slope: float, end: float, end_slope: float
+        ) -> float:
+            """d/dtau of `hermite`."""
+            tau2 = tau * tau
+            return (
+                (6 * tau2 - 6 * tau) * start
+                + (3 * tau2 - 4 * tau + 1) * h * start_slope
+                + (-6 * tau2 + 6 * tau) * end
+                + (3 * tau2 - 2 * tau) * h * end_slope
+            )
+
         ends = (w_left, left.tangent, w_right, right.tangent)
         q_ends = [float(end[-1]) for end in ends]
         target = q / self.scale[-1]
+        # q(tau) rises from the left end to the right end of a pre-fold segment: solve
+        # q(tau) = target on the q component alone by Newton, kept inside a bisection bracket
+        # (a few iterations where bisection took sixty), then build the state once.
         low, high = 0.0, 1.0
-        # q(tau) rises from the left end to the right end of a pre-fold segment: bisect on the
-        # q component alone (in floats, the same numbers as the whole vector's), then build the
-        # state once.
-        for _ in range(60):
-            middle = 0.5 * (low + high)
-            if hermite(middle, *q_ends) < target:
-                low = middle
+        span = q_ends[2] - q_ends[0]
+        tau = min(max((target - q_ends[0]) / span, 0.0), 1.0) if span > 0 else 0.5
+        for _ in range(_HERMITE_ITERATIONS):
+            excess = hermite(tau, *q_ends) - target
+            if excess == 0:
+                break
+            if excess < 0:
+                low = tau
             else:
-                high = middle
+                high = tau
+            slope = hermite_slope(tau, *q_ends)
+            step = excess / slope if slope > 0 else math.inf
+            following = tau - step
+            if not low < following < high:
+                following = 0.5 * (low + high)
+            if abs(following - tau) <= _HERMITE_TOLERANCE:
+                break
+            tau = following
         state_ends = [end[:-1] for end in ends]
-        return hermite(0.5 * (low + high), *state_ends) * self.scale[:-1]
+        return hermite(tau, *state_ends) * self.scale[:-1]
 
 
 def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: float) -> np.ndarray:
