@@ -30,15 +30,14 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
-import scipy.linalg
 
 from solver.evaluation import Evaluation
+from solver.factors import Factors, factorise, solve_with
 from solver.layout import Layout
 
 __all__ = [
@@ -46,9 +45,7 @@ __all__ = [
     "BranchPoint",
     "BranchTracer",
     "ContinuationSettings",
-    "Factors",
     "branch_scales",
-    "factorise",
     "scaled_norm",
 ]
 
@@ -242,23 +239,6 @@ def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarr
     return matrix
 
 
-Factors = tuple[np.ndarray, np.ndarray]
-
-
-def factorise(matrix: np.ndarray) -> Factors | None:
-    """LU factors (scipy's) of a square matrix, or None if it is singular or not finite. The
-    matrix is factorised in place: pass one nobody else holds (a fresh J0 + q J1)."""
-    if not np.all(np.isfinite(matrix)):
-        return None
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
-        try:
-            factors = scipy.linalg.lu_factor(matrix, overwrite_a=True, check_finite=False)
-        except (np.linalg.LinAlgError, ValueError, scipy.linalg.LinAlgWarning):
-            return None
-    return factors if np.all(np.diag(factors[0]) != 0) else None
-
-
 def _tangent_and_orientation(factors: Factors) -> tuple[np.ndarray, int] | None:
     """From the factors of B = [[J scale_x, r1 scale_q], [previous^T]]: the unit tangent at
     (x, q), oriented so that its projection on `previous` is positive, and the orientation,
@@ -277,7 +257,7 @@ def _tangent_and_orientation(factors: Factors) -> tuple[np.ndarray, int] | None:
     lu, pivots = factors
     last = np.zeros(lu.shape[0])
     last[-1] = 1.0
-    u = scipy.linalg.lu_solve(factors, last, check_finite=False)
+    u = solve_with(factors, last)
     length = float(np.linalg.norm(u))
     if not math.isfinite(length):
         return None
@@ -376,7 +356,7 @@ class _Tracer:
                 return None
             factored = evaluation.jacobian0
             rhs = np.append(residual, normal @ w - offset)
-            update = scipy.linalg.lu_solve(factors, rhs, check_finite=False)
+            update = solve_with(factors, rhs)
             if iteration == 0:
                 first_correction = float(np.linalg.norm(update))
             w = w - update
@@ -385,9 +365,7 @@ class _Tracer:
                 continue
             r0, r1, q = self._residual(w)
             if chord_finish and not self._converged(r0, r1, q):
-                chord = scipy.linalg.lu_solve(
-                    factors, np.append(r0 + q * r1, normal @ w - offset), check_finite=False
-                )
+                chord = solve_with(factors, np.append(r0 + q * r1, normal @ w - offset))
                 w_chord = w - chord
                 chord_r0, chord_r1, chord_q = self._residual(w_chord)
                 if self._converged(chord_r0, chord_r1, chord_q):

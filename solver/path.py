@@ -26,10 +26,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 
-from solver.continuation import factorise, scaled_norm
+from solver.continuation import scaled_norm
 from solver.evaluation import Evaluation
+from solver.factors import factorise, solve_with
 
 __all__ = ["PathResult", "PathSettings", "follow"]
 
@@ -180,7 +180,7 @@ def _step(
     factors = factorise(evaluation.jacobian(q_next))
     if factors is None:
         return _Landing(False, x, evaluation, 0, np.inf, "singular Jacobian")
-    predicted = x - scipy.linalg.lu_solve(factors, evaluation.residual(q_next), check_finite=False)
+    predicted = x - solve_with(factors, evaluation.residual(q_next))
     move = scaled_norm(predicted - x, scale)
     if not np.isfinite(move):
         return _Landing(False, x, evaluation, 0, np.inf, "non-finite prediction")
@@ -205,7 +205,7 @@ def _step(
             factors = factorise(current.jacobian(q_next))
             if factors is None:
                 return _Landing(False, x, evaluation, iteration, np.inf, "singular Jacobian")
-        correction = scipy.linalg.lu_solve(factors, r, check_finite=False)
+        correction = solve_with(factors, r)
         size = scaled_norm(correction, scale)
         limit = (
             settings.max_first_correction * move

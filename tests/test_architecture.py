@@ -20,7 +20,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["geometry"],
     ["vlm"],
     ["residual"],
-    ["evaluation"],
+    ["evaluation", "factors"],
     ["compiled"],
     ["newton", "stability", "continuation"],
     ["path"],
