@@ -7,8 +7,7 @@ negative-lift branch that never joins the jig's). Neither may reach the user as 
 The branch from the jig (pseudo-arclength continuation, `solver.branch`) decides:
 
 - beyond its fold: `NoEquilibrium` naming the fold speed;
-- below the fold: Newton from the branch's own (interpolated) state at this q, with chord steps
-  while it stays as close to its start as a path step's landing point to its Jacobians; a stable
+- below the fold: Newton from the branch's own (interpolated) state at this q; a stable
   equilibrium is the answer; an unstable one is `NoEquilibrium` (the branch has no stable
   equilibrium here), a failure `ConvergenceError`;
 - where the branch could not be followed that far: `ConvergenceError` saying why.
@@ -20,12 +19,11 @@ from __future__ import annotations
 
 import time
 
-from solver.branch import branch, fold, pressure_scale, search_velocity_limit
+from solver.branch import branch, fold, search_velocity_limit
 from solver.equilibrium import judge
 from solver.errors import ConvergenceError, NoEquilibrium
 from solver.inputs import FlightCondition, SolverOptions
-from solver.newton import ChordSteps, newton
-from solver.path import PathSettings
+from solver.newton import newton
 from solver.results import Equilibrium
 from solver.system import CoupledSystem
 
@@ -82,9 +80,6 @@ def from_branch(
         q,
         options.tolerance,
         options.max_iterations,
-        chord=ChordSteps(
-            system.scale(pressure_scale(system))[:-1], PathSettings().jacobian_distance
-        ),
     )
     iterations = prior_iterations + result.iterations
     if not result.converged:
