@@ -102,9 +102,10 @@ def _dominant_positive_eigenvalue(g: np.ndarray, scale: float) -> float | None:
     """The eigenvalue of largest modulus by power iteration, if it is real, positive and
     converged; None when power iteration cannot tell (then the full solve decides).
 
-    The iteration runs on H = G / ||G||, whose products can neither overflow nor underflow in a
-    few steps, and vouches for its iterate (Rayleigh quotient and eigen-residual) only every
-    `_PRODUCTS_PER_CHECK` products: the products are cheap, the checks are not.
+    The iteration runs on H = G / ||G|| (||H|| = 1: its products cannot overflow), renormalises
+    and vouches for its iterate (Rayleigh quotient and eigen-residual) only every
+    `_PRODUCTS_PER_CHECK` products: the products are cheap, the checks are not. An iterate that
+    vanishes (all of G's eigenvalues negligible) leaves the verdict to the full solve.
     """
     h = g / scale
     vector = _start_vector(g.shape[0])
