@@ -24,6 +24,7 @@ from __future__ import annotations
 import atexit
 import contextlib
 import fcntl
+import functools
 import logging
 import os
 import platform
@@ -31,6 +32,7 @@ import shutil
 import subprocess
 import tempfile
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import Literal
 
@@ -46,7 +48,7 @@ from solver.residual import (
     build_residual_function,
 )
 
-__all__ = ["CompiledModel", "build_model", "cache_dir", "compilation_enabled"]
+__all__ = ["CompiledModel", "build_model", "cache_dir", "compilation_enabled", "isa_level"]
 
 log = logging.getLogger(__name__)
 
@@ -54,10 +56,67 @@ log = logging.getLogger(__name__)
 # architecture. Without semantic interposition the compiler may inline CasADi's small helpers
 # (casadi_sq, casadi_copy, ...) into the kernels, as it could not in a shared library otherwise:
 # 10-13 % off the Jacobian, the same bits. GCC's dynamic vectorizer cost model (-O3's) lets it
-# pack the hand-written kernel derivatives into SSE2 pairs: 15-30 % off the Jacobian (N = 30 to
-# 60, k = 4), the same bits (IEEE operations, none reassociated), where all of -O3 compiles 2.5x
-# slower at N = 60 for no more. No -march: a library must run wherever its cache is read.
-_FLAGS = ("-O2", "-fvect-cost-model=dynamic", "-ffp-contract=off", "-fno-semantic-interposition")
+# pack the hand-written kernel derivatives into vector registers: 10-20 % off the Jacobian
+# (N = 30 to 120, k = 4), the same bits (IEEE operations, none reassociated), where all of -O3
+# compiles 2.5x slower at N = 60 for a few % more.
+_BASE_FLAGS = (
+    "-O2",
+    "-fvect-cost-model=dynamic",
+    "-ffp-contract=off",
+    "-fno-semantic-interposition",
+)
+
+# The x86-64 psABI's ISA levels, highest first, with the CPU features (as /proc/cpuinfo names
+# them) each needs. Compiling for the highest level this CPU has gives wider vectors (AVX2,
+# AVX-512): another 8-12 % off the Jacobian at N = 30, the same bits (the same IEEE operations,
+# still no contraction). The level is part of the library's name, so a machine without it never
+# loads a library built for it (a shared cache directory, an image built elsewhere).
+_V2 = frozenset({"cx16", "lahf_lm", "popcnt", "sse4_1", "sse4_2", "ssse3"})
+_V3 = _V2 | {"avx", "avx2", "bmi1", "bmi2", "f16c", "fma", "abm", "movbe", "xsave"}
+_V4 = _V3 | {"avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl"}
+_ISA_LEVELS = (("x86-64-v4", _V4), ("x86-64-v3", _V3))
+
+
+def _cpu_features() -> frozenset[str]:
+    """This CPU's feature flags as the Linux kernel reports them (empty elsewhere)."""
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as cpuinfo:
+            for line in cpuinfo:
+                if line.startswith("flags"):
+                    return frozenset(line.partition(":")[2].split())
+    except OSError:
+        pass
+    return frozenset()
+
+
+def _compiler_accepts(compiler: str, flag: str) -> bool:
+    try:
+        probe = subprocess.run(
+            [compiler, flag, "-x", "c", "-c", "-o", os.devnull, "-"],
+            input=b"int probe;\n",
+            capture_output=True,
+            timeout=30,
+        )
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return probe.returncode == 0
+
+
+def isa_level(features: frozenset[str], accepts: Callable[[str], bool]) -> str | None:
+    """The highest x86-64 ISA level whose features are all in `features` and whose -march flag
+    the compiler `accepts`; None for the baseline."""
+    for level, needs in _ISA_LEVELS:
+        if needs <= features and accepts(f"-march={level}"):
+            return level
+    return None
+
+
+@functools.cache
+def _flags(compiler: str) -> tuple[str, ...]:
+    if platform.machine() != "x86_64":
+        return _BASE_FLAGS
+    level = isa_level(_cpu_features(), lambda flag: _compiler_accepts(compiler, flag))
+    return _BASE_FLAGS if level is None else (*_BASE_FLAGS, f"-march={level}")
 
 
 def cache_dir() -> Path:
@@ -74,7 +133,7 @@ def compilation_enabled() -> bool:
 
 def _library_path(layout: Layout) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
-    flags = "".join(_FLAGS).replace("-", "_")
+    flags = "".join(_flags(_compiler())).replace("-", "_")
     mesh = f"n{layout.n}-k{layout.chordwise}"
     tag = f"{mesh}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
@@ -309,7 +368,7 @@ def _generate_and_compile(
     # clean-up) even if this process exits first: a short-lived process still leaves the
     # library for the next one instead of a half-built directory.
     script = (
-        f'"$0" {" ".join(_FLAGS)} -fPIC -shared "$1" -o "$2/lib.so" '
+        f'"$0" {" ".join(_flags(_compiler()))} -fPIC -shared "$1" -o "$2/lib.so" '
         '&& mv -f "$2/lib.so" "$3"; status=$?; rm -rf "$2"; exit $status'
     )
     compiler = subprocess.Popen(

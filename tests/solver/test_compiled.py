@@ -142,3 +142,59 @@ def test_a_process_that_lost_the_compile_lock_loads_the_winners_library(
         fcntl.flock(lock, fcntl.LOCK_UN)
     compiled._compile_library(layout, None, wait=True)  # the winner finishes
     assert model_for(layout).compiled
+
+
+V3_CPU = frozenset(
+    [
+        "fpu",
+        "sse2",
+        "cx16",
+        "lahf_lm",
+        "popcnt",
+        "sse4_1",
+        "sse4_2",
+        "ssse3",
+        "avx",
+        "avx2",
+        "bmi1",
+        "bmi2",
+        "f16c",
+        "fma",
+        "abm",
+        "movbe",
+        "xsave",
+    ]
+)
+V4_CPU = V3_CPU | {"avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl"}
+
+
+@pytest.mark.parametrize(
+    ("features", "accepted", "level"),
+    [
+        pytest.param(V4_CPU, {"x86-64-v4", "x86-64-v3"}, "x86-64-v4", id="avx512-cpu"),
+        pytest.param(V3_CPU, {"x86-64-v4", "x86-64-v3"}, "x86-64-v3", id="avx2-cpu"),
+        pytest.param(
+            V4_CPU - {"avx512vl"}, {"x86-64-v4", "x86-64-v3"}, "x86-64-v3", id="v4-less-vl"
+        ),
+        pytest.param(V3_CPU - {"fma"}, {"x86-64-v4", "x86-64-v3"}, None, id="no-fma"),
+        pytest.param(V4_CPU, {"x86-64-v3"}, "x86-64-v3", id="old-compiler"),
+        pytest.param(V4_CPU, set(), None, id="compiler-without-levels"),
+    ],
+)
+def test_the_library_targets_the_highest_isa_level_both_cpu_and_compiler_have(
+    features: frozenset[str], accepted: set[str], level: str | None
+) -> None:
+    """A library built for a level this CPU lacks would die on an illegal instruction."""
+    assert (
+        compiled.isa_level(features, lambda flag: flag.removeprefix("-march=") in accepted) == level
+    )
+
+
+def test_the_isa_level_is_in_the_library_name(private_cache: Path) -> None:
+    """So a machine without that level computes another name and never loads the library."""
+    name = compiled._library_path(Layout(N_SMALL)).name
+    flags = compiled._flags(compiled._compiler())
+    march = [flag for flag in flags if flag.startswith("-march=")]
+    assert all(flag.replace("-", "_") in name for flag in march)
+    level = compiled.isa_level(compiled._cpu_features(), lambda flag: True)
+    assert len(march) <= 1 and (not march or march[0] == f"-march={level}")
