@@ -21,7 +21,9 @@ RUN pip install .
 
 USER flexwing
 ENV FLEXWING_CACHE_DIR=/home/flexwing/.cache/flexwing
-# Compile the common mesh size into the image, so workers start warm in milliseconds.
+# Compile the common mesh size into the image, so workers start warm in milliseconds. The
+# library targets the build machine's x86-64 ISA level; a host without that level compiles its
+# own at first use (the level is in the library's name, so it never loads this one).
 RUN python -c "import solver; assert solver.warm_up(30), 'no compiled library for N = 30'"
 
 EXPOSE 8000

@@ -5,9 +5,10 @@ The first solve of a never-seen mesh must not wait for a C compiler: `build_mode
 returns at once with functions evaluated by CasADi's virtual machine and, if compilation is
 enabled, starts a background thread that generates C code, compiles it with the system C
 compiler and swaps the library in. Libraries are cached on disk, keyed by the mesh, the model
-version, the CasADi version, the platform and the compiler flags, so a process that finds one
-loads it in milliseconds. A file lock stops several processes from compiling the same library at
-once; a process that loses the lock loads the winner's library as soon as it exists.
+version, the CasADi version, the platform and the compiler flags (with the CPU's ISA level), so
+a process that finds one loads it in milliseconds. A file lock stops several processes from
+compiling the same library at once; a process that loses the lock loads the winner's library as
+soon as it exists.
 
 The virtual machine and the compiled code perform the same floating-point operations in the same
 order, and the code is compiled without contracting multiply-adds, so both give bit-identical
