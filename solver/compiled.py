@@ -66,6 +66,7 @@ _BASE_FLAGS = (
     "-ffp-contract=off",
     "-fno-semantic-interposition",
 )
+_PROBED_FLAGS = frozenset({"-fvect-cost-model=dynamic"})
 
 # The x86-64 psABI's ISA levels, highest first, with the CPU features (as /proc/cpuinfo names
 # them) each needs. Compiling for the highest level this CPU has gives wider vectors (AVX2,
@@ -93,7 +94,7 @@ def _cpu_features() -> frozenset[str]:
 def _compiler_accepts(compiler: str, flag: str) -> bool:
     try:
         probe = subprocess.run(
-            [compiler, flag, "-x", "c", "-c", "-o", os.devnull, "-"],
+            [compiler, "-Werror", flag, "-x", "c", "-c", "-o", os.devnull, "-"],
             input=b"int probe;\n",
             capture_output=True,
             timeout=30,
@@ -114,10 +115,15 @@ def isa_level(features: frozenset[str], accepts: Callable[[str], bool]) -> str |
 
 @functools.cache
 def _flags(compiler: str) -> tuple[str, ...]:
+    """The compile flags for `compiler`: GCC's vectorizer cost model only where the compiler
+    takes it (clang ignores it with a warning), the ISA level only where CPU and compiler have
+    it."""
+    accepts = functools.partial(_compiler_accepts, compiler)
+    flags = tuple(flag for flag in _BASE_FLAGS if flag not in _PROBED_FLAGS or accepts(flag))
     if platform.machine() != "x86_64":
-        return _BASE_FLAGS
-    level = isa_level(_cpu_features(), lambda flag: _compiler_accepts(compiler, flag))
-    return _BASE_FLAGS if level is None else (*_BASE_FLAGS, f"-march={level}")
+        return flags
+    level = isa_level(_cpu_features(), accepts)
+    return flags if level is None else (*flags, f"-march={level}")
 
 
 def cache_dir() -> Path:

@@ -1,5 +1,5 @@
-"""LU factors of a Jacobian, kept for more than one solve: Newton's chord steps, the path's
-predictor and first correction, the continuation's tangent and corrector all reuse them."""
+"""LU factors of a Jacobian, kept for more than one solve: the path's predictor and first
+correction share them, and so do the continuation's corrector, chord step and tangent."""
 
 from __future__ import annotations
 

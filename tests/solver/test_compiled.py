@@ -198,3 +198,16 @@ def test_the_isa_level_is_in_the_library_name(private_cache: Path) -> None:
     assert all(flag.replace("-", "_") in name for flag in march)
     level = compiled.isa_level(compiled._cpu_features(), lambda flag: True)
     assert len(march) <= 1 and (not march or march[0] == f"-march={level}")
+
+
+def test_a_flag_the_compiler_does_not_take_is_left_out(tmp_path: Path) -> None:
+    """A compiler without GCC's vectorizer cost model (clang only warns about it) still gets
+    the flags that keep the library bit-identical."""
+    compiler = tmp_path / "cc-without-cost-model"
+    compiler.write_text(
+        '#!/bin/sh\nfor arg in "$@"; do case "$arg" in -fvect-cost-model*) exit 1;; esac; done\n'
+    )
+    compiler.chmod(0o755)
+    flags = compiled._flags(str(compiler))
+    assert "-fvect-cost-model=dynamic" not in flags
+    assert {"-O2", "-ffp-contract=off", "-fno-semantic-interposition"} <= set(flags)
