@@ -90,7 +90,7 @@ def _swept_aft() -> solver.Wing:
 def test_the_reported_divergence_pressure_is_that_of_the_converged_state(make_wing, alpha):
     """The verdict is computed on the Jacobians of Newton's last iterate, not re-evaluated at
     the converged state: the difference must stay at the linearisation's sensitivity times that
-    last step (~1e-5 relative; 2e-4 at worst over 72 wings, and reading the Jacobians 1e-4 scaled
+    last step (~1e-5 relative; 2e-4 at worst over 36 wings, and reading the Jacobians 1e-4 scaled
     away would already cost ~1e-3)."""
     wing = make_wing()
     system = CoupledSystem(wing, alpha)
