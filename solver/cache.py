@@ -1,9 +1,10 @@
 """The solver's one process-wide cache, bounded in bytes.
 
 It keeps what is expensive to rebuild and identical when rebuilt: compiled models per mesh,
-jig solutions and linear divergence pressures per wing, branches from the jig per wing and
-alpha. Entries are keyed by a kind and the wing's canonical key (`Wing.key`), and evicted least
-recently used first once their estimated sizes exceed the budget. Nothing in it can change an
+jig solutions and linear divergence pressures per wing, the model's parameter vectors and
+branches from the jig per wing and alpha. Entries are keyed by a kind and the wing's canonical
+key (`Wing.key`), and evicted least recently used first once their estimated sizes exceed the
+budget. Nothing in it can change an
 answer: every entry is a deterministic function of its key, so a cached value is bit-identical
 to a recomputed one (see `solver.compiled` on the virtual machine and compiled code). Clearing
 it, or a cache too small to keep anything, makes solves slower, never different.
@@ -134,7 +135,8 @@ def model_for(layout: Layout) -> CompiledModel:
 
 
 def clear_caches() -> None:
-    """Forget everything cached (models, jig solutions, branches, divergence pressures)."""
+    """Forget everything cached (models, jig solutions, parameters, branches, divergence
+    pressures)."""
     _store.clear()
 
 

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.evaluation import Evaluation
+from solver.factors import factorise, solve_with
 
 __all__ = ["NewtonResult", "newton"]
 
@@ -65,10 +66,10 @@ def newton(
             return NewtonResult(x, ev, iteration, norm, True, "converged")
         if iteration == max_iterations:
             break
-        try:
-            step = np.linalg.solve(ev.jacobian(q), r)
-        except np.linalg.LinAlgError:
+        factors = factorise(ev.jacobian(q))
+        if factors is None:
             return NewtonResult(x, ev, iteration, norm, False, "singular Jacobian")
+        step = solve_with(factors, r)
         merit = float(r @ r)
         length = 1.0
         while True:

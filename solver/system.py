@@ -11,7 +11,7 @@ from functools import cached_property
 
 import numpy as np
 
-from solver.cache import model_for
+from solver.cache import cached, model_for
 from solver.compiled import CompiledModel
 from solver.continuation import branch_scales
 from solver.evaluation import AlphaTerms, Evaluation
@@ -60,11 +60,17 @@ class CoupledSystem:
 
     @cached_property
     def parameters(self) -> np.ndarray:
-        """(n_parameters,) the model's parameter vector."""
+        """(n_parameters,) the model's parameter vector, read-only. Kept in the solver's cache:
+        a request builds a new system, and assembling the vector costs a tenth of a warm solve."""
+        return cached(("parameters", *self.key), self._assemble_parameters, _nbytes)
+
+    def _assemble_parameters(self) -> np.ndarray:
         camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
-        return self.layout.parameters(
+        parameters = self.layout.parameters(
             self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
         )
+        parameters.setflags(write=False)
+        return parameters
 
     @property
     def key(self) -> tuple[str, float, int, bool]:
@@ -92,3 +98,7 @@ class CoupledSystem:
     def scale(self, q_scale: float) -> np.ndarray:
         """(n + 1,) scaled coordinates of states and q, with q measured in q_scale [Pa]."""
         return branch_scales(self.layout, self.wing.semispan, self.wing.mean_chord, q_scale)
+
+
+def _nbytes(array: np.ndarray) -> int:
+    return array.nbytes

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import scipy.linalg
 
 from solver.factors import factorise, solve_with
 
@@ -32,3 +33,19 @@ def test_the_factors_solve_the_system_they_came_from():
 )
 def test_a_singular_or_non_finite_matrix_has_no_factors(matrix):
     assert factorise(matrix.copy()) is None
+
+
+@pytest.mark.parametrize("order", ["F", "C"])
+@pytest.mark.parametrize("columns", [None, 3], ids=["vector", "matrix"])
+def test_the_factors_and_solutions_are_scipys_bit_for_bit(order, columns):
+    """The module calls LAPACK directly only to skip scipy's checks: nothing else may change."""
+    rng = np.random.default_rng(1)
+    matrix = rng.standard_normal((30, 30))
+    rhs = rng.standard_normal(30 if columns is None else (30, columns))
+    reference = scipy.linalg.lu_factor(matrix, check_finite=False)
+    factors = factorise(matrix.copy(order=order))
+    assert factors is not None
+    assert np.array_equal(factors[0], reference[0])
+    assert np.array_equal(factors[1], reference[1])
+    expected = scipy.linalg.lu_solve(reference, rhs, check_finite=False)
+    assert np.array_equal(solve_with(factors, rhs), expected)
