@@ -4,10 +4,10 @@ It keeps what is expensive to rebuild and identical when rebuilt: compiled model
 jig solutions and linear divergence pressures per wing, the model's parameter vectors and
 branches from the jig per wing and alpha. Entries are keyed by a kind and the wing's canonical
 key (`Wing.key`), and evicted least recently used first once their estimated sizes exceed the
-budget. Nothing in it can change an
-answer: every entry is a deterministic function of its key, so a cached value is bit-identical
-to a recomputed one (see `solver.compiled` on the virtual machine and compiled code). Clearing
-it, or a cache too small to keep anything, makes solves slower, never different.
+budget. Nothing in it can change an answer: every entry is a deterministic function of its
+key, so a cached value is bit-identical to a recomputed one (see `solver.compiled` on the
+virtual machine and compiled code). Clearing it, or a cache too small to keep anything, makes
+solves slower, never different.
 
 Environment:
     FLEXWING_SOLVER_CACHE_BYTES  the budget [bytes] (default 268435456, 256 MiB). The entry
