@@ -228,7 +228,7 @@ class Wing:
         """[m]"""
         return float(self.y[-1])
 
-    @property
+    @cached_property
     def planform_area(self) -> float:
         """Jig planform area of both halves [m^2] (trapezoidal panels between stations)."""
         return float(np.sum((self.chord[1:] + self.chord[:-1]) * np.diff(self.y)))

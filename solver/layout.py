@@ -19,6 +19,7 @@ Parameters p, in this order:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -90,11 +91,14 @@ class Layout:
     def tangency_rows(self) -> slice:
         return slice(3 * self.n, 3 * self.n + self.n_panels)
 
-    @property
+    @cached_property
     def load_rows(self) -> np.ndarray:
-        """Equations in which the aerodynamic loads appear (J1's only non-zero rows)."""
+        """Equations in which the aerodynamic loads appear (J1's only non-zero rows); read-only,
+        built once per layout (every stability verdict reads it)."""
         rows = np.arange(self.n_unknowns)
-        return np.r_[rows[self.bending_rows], rows[self.torsion_rows]]
+        load_rows = np.r_[rows[self.bending_rows], rows[self.torsion_rows]]
+        load_rows.setflags(write=False)
+        return load_rows
 
     # Parameters
     def parameters(

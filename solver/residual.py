@@ -53,8 +53,9 @@ __all__ = [
     "build_residual_function",
 ]
 
-# Bump when the equations change: compiled libraries on disk are keyed by it.
-MODEL_VERSION = "9"
+# Bump when the equations or the graph they are generated from change: compiled libraries on
+# disk are keyed by it.
+MODEL_VERSION = "10"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -189,6 +190,13 @@ def _outboard_sum(strip_rows: ca.MX) -> ca.MX:
     return ca.vertcat(*reversed(rows))
 
 
+def _scale_rows(factors: ca.MX, matrix: ca.MX) -> ca.MX:
+    """diag(factors) matrix, for a (r, 1) column of factors and a dense (r, c) matrix: an
+    elementwise product, where CasADi's sparse product through a diagonal matrix goes through
+    index arrays and a dense work column for every column."""
+    return ca.repmat(factors, 1, matrix.size2()) * matrix
+
+
 class _Beam:
     """The beam's load rows from per-panel loads (values or derivative rows: all linear but the
     deformed-axis term, which the Jacobian adds by hand)."""
@@ -210,7 +218,7 @@ class _Beam:
 
     def bending(self, loads: ca.MX) -> ca.MX:
         """(N, c) M_i, linear in the loads."""
-        return self._outboard(loads, 3) - ca.mtimes(ca.diag(self.s), self._outboard(loads, 2))
+        return self._outboard(loads, 3) - _scale_rows(self.s, self._outboard(loads, 2))
 
     def axis_force(self, loads: ca.MX) -> ca.MX:
         """(N, c) outboard sum of Fx cos(sweep) - Fy sin(sweep)."""
@@ -220,9 +228,9 @@ class _Beam:
         """(2(N-1), c): -h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) for M/EI and degrees(T/GJ)."""
 
         def trapezoid(integrand: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
-            inner = ca.diag(-scale * self.h / (2 * stiffness[:-1]))
-            outer = ca.diag(-scale * self.h / (2 * stiffness[1:]))
-            return ca.mtimes(inner, integrand[:-1, :]) + ca.mtimes(outer, integrand[1:, :])
+            inner = -scale * self.h / (2 * stiffness[:-1])
+            outer = -scale * self.h / (2 * stiffness[1:])
+            return _scale_rows(inner, integrand[:-1, :]) + _scale_rows(outer, integrand[1:, :])
 
         return ca.vertcat(trapezoid(bending, self.ei, 1.0), trapezoid(torque, self.gj, DEG_PER_RAD))
 
@@ -236,7 +244,7 @@ class _Beam:
     ) -> ca.MX:
         """(2(N-1), nx) d(load_rows)/dx from the loads and their derivative rows (5M, nx)."""
         torque_x = self._outboard(loads_x, 4) - deformed * (
-            ca.mtimes(ca.diag(heave), self.axis_force(loads_x))
+            _scale_rows(heave, self.axis_force(loads_x))
             + ca.mtimes(ca.diag(self.axis_force(loads)), heave_columns)
         )
         return self.rows(self.bending(loads_x), torque_x)
@@ -270,14 +278,30 @@ def _induced_derivative(
     g_dfield (R, 3), g_dleft/g_dright (R, 3M) from `vlm.source_columns` (R = 3M, rows 3i + c:
     field point i's component c) or `vlm.normal_source_columns` (R = M, rows_per_point = 1: the
     normal component); field_z, left_z, right_z (3M, 3N) the lattice's derivatives (rows
-    3p + c: point p's coordinate c).
+    3p + c: point p's coordinate c). The field points' term is one sparse product
+    (`_per_field_point`), not a product through a diagonal matrix per coordinate: 1.05x faster
+    Jacobians at N = 30.
     """
     result = ca.mtimes(g_dleft, left_z) + ca.mtimes(g_dright, right_z)
-    for component in range(3):
-        # Each row of field point i uses that point's coordinate `component`.
-        rows = [3 * i + component for i in range(m) for _ in range(rows_per_point)]
-        result += ca.mtimes(ca.diag(g_dfield[:, component]), field_z[rows, :])
-    return result
+    return result + ca.mtimes(_per_field_point(g_dfield, m, rows_per_point), field_z)
+
+
+def _per_field_point(g_dfield: ca.MX, m: int, rows_per_point: int) -> ca.MX:
+    """(R, 3M) sparse: row r of field point i holds g_dfield[r, :] in columns 3 i .. 3 i + 2, so
+    that its product with field_z (3M, 3N) applies each row's field-point derivative in one
+    sparse product (R = rows_per_point M)."""
+    r = rows_per_point * m
+    rows, columns, order = [], [], []
+    for i in range(m):
+        for c in range(3):  # column 3 i + c, rows in increasing order (compressed columns)
+            for d in range(rows_per_point):
+                row = rows_per_point * i + d
+                rows.append(row)
+                columns.append(3 * i + c)
+                order.append(c * r + row)  # g_dfield (R, 3) is stored column-major
+    pattern = ca.Sparsity.triplet(r, 3 * m, rows, columns)
+    values = ca.vec(g_dfield)[order]
+    return ca.MX(pattern, values)
 
 
 class _Symbols:
