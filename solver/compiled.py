@@ -35,7 +35,7 @@ import tempfile
 import threading
 from collections.abc import Callable
 from pathlib import Path
-from typing import Literal
+from typing import Literal, TypeVar
 
 import casadi as ca
 import numpy as np
@@ -146,6 +146,9 @@ def _library_path(layout: Layout) -> Path:
     return cache_dir() / f"flexwing-{tag}.so"
 
 
+T = TypeVar("T")
+
+
 class _BufferedCall:
     """Calls a CasADi Function through preallocated buffers (4x cheaper than f(x, p)).
 
@@ -169,10 +172,20 @@ class _BufferedCall:
 
     def __call__(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         with self._lock:
-            self._x[:] = x
-            self._p[:] = p
-            self._evaluate()
+            self._evaluate_at(x, p)
             return [out.copy(order=self._order) for out in self._outputs]
+
+    def collect(self, x: np.ndarray, p: np.ndarray, read: Callable[[list[np.ndarray]], T]) -> T:
+        """`read(outputs)` on the output buffers themselves, under the lock: `read` copies what
+        it keeps (the next call overwrites the buffers)."""
+        with self._lock:
+            self._evaluate_at(x, p)
+            return read(self._outputs)
+
+    def _evaluate_at(self, x: np.ndarray, p: np.ndarray) -> None:
+        self._x[:] = x
+        self._p[:] = p
+        self._evaluate()
 
 
 _Functions = tuple[ca.Function, ca.Function, ca.Function]
@@ -220,14 +233,26 @@ class CompiledModel:
 
     def evaluate(self, x: np.ndarray, p: np.ndarray) -> Evaluation:
         """Residual parts and exact Jacobians at x (about 4x the cost of `residual`)."""
-        r0, r1, j0, j1, *_ = self._calls[0](x, p)
-        return Evaluation(r0.ravel(), r1.ravel(), j0, j1)
+        return self._calls[0].collect(x, p, self._evaluation)
+
+    def _evaluation(self, outputs: list[np.ndarray]) -> Evaluation:
+        """r0, r1 and the full (n, n) Jacobians, Fortran-ordered, from the coupled function's
+        outputs: J0's structure and tangency rows placed, J1's load rows placed among zeros."""
+        r0, r1, structure, tangency, loads = outputs[:5]
+        layout, n = self.layout, self.layout.n_unknowns
+        j0 = np.empty((n, n), order="F")
+        j0[layout.structure_rows] = structure
+        j0[layout.tangency_rows] = tangency
+        j1 = np.zeros((n, n), order="F")
+        j1[layout.bending_rows.start : layout.torsion_rows.stop] = loads
+        return Evaluation(r0.ravel().copy(), r1.ravel().copy(), j0, j1)
 
     def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
         """`evaluate`, and what trim and design add (same evaluation, nothing recomputed)."""
-        r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = self._calls[0](
-            x, p
+        evaluation, alpha_outputs = self._calls[0].collect(
+            x, p, lambda outputs: (self._evaluation(outputs), [a.copy() for a in outputs[5:]])
         )
+        r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = alpha_outputs
         terms = AlphaTerms(
             r0_alpha.ravel(),
             r1_alpha.ravel(),
@@ -237,7 +262,7 @@ class CompiledModel:
             float(drag[0, 0]),
             drag_x.ravel(),
         )
-        return Evaluation(r0.ravel(), r1.ravel(), j0, j1), terms
+        return evaluation, terms
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(r0, r1) at x, without derivatives."""

@@ -26,13 +26,14 @@ per unit V, so the residual is exactly affine in q:
 
     r(x; p, q) = r0(x; p) + q r1(x; p),   J = J0 + q J1.
 
-The compiled function returns r0, r1, J0, J1, and for trimmed flight the derivatives of r0 and
-r1 in alpha and the lift per unit q with its derivatives. The Jacobian is exact: CasADi
-differentiates the lattice geometry, the aerodynamic glue and the horseshoe kernel
-(`vlm.pair_kernel` at the force points; `vlm.normal_pair_kernel` at the collocation points, where
-tangency needs only the normal component); the O(M^2) induced-velocity part is combined by the
-chain rule from the kernel's own derivatives, and the beam's outboard sums are applied as running
-sums over a sparse panels-to-strips operator, which keeps the work at O(M^2) instead of O(M^3).
+The compiled function returns r0, r1, J0, J1 (their non-zero row blocks), and for trimmed
+flight the derivatives of r0 and r1 in alpha and the lift per unit q with its derivatives. The
+Jacobian is exact: CasADi differentiates the lattice geometry, the aerodynamic glue and the
+horseshoe kernel (`vlm.pair_kernel` at the force points; `vlm.normal_pair_kernel` at the
+collocation points, where tangency needs only the normal component); the O(M^2)
+induced-velocity part is combined by the chain rule from the kernel's own derivatives, and the
+beam's outboard sums are applied as running sums over a sparse panels-to-strips operator, which
+keeps the work at O(M^2) instead of O(M^3).
 """
 
 from __future__ import annotations
@@ -55,7 +56,7 @@ __all__ = [
 
 # Bump when the equations or the graph they are generated from change: compiled libraries on
 # disk are keyed by it.
-MODEL_VERSION = "10"
+MODEL_VERSION = "11"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
@@ -374,9 +375,14 @@ class _Symbols:
 
 
 def build_coupled_function(layout: Layout) -> ca.Function:
-    """(x, p) -> r0, r1, J0, J1 (dense), and for trim r0_alpha, r1_alpha (per degree), lift
-    (per unit q), lift_x (1, n) and lift_alpha; for design the near-field drag (per unit q) and
-    drag_x (1, n). See the module docstring."""
+    """(x, p) -> r0, r1, the non-zero row blocks of J0 and J1 (dense), and for trim r0_alpha,
+    r1_alpha (per degree), lift (per unit q), lift_x (1, n) and lift_alpha; for design the
+    near-field drag (per unit q) and drag_x (1, n). See the module docstring.
+
+    The Jacobians leave as row blocks (`solver.layout`): J0's structure rows (3N, n) and
+    tangency rows (M, n), J1's load rows (2(N-1), n), its only non-zero ones. CasADi stores
+    matrices by columns, so stacking row blocks into one matrix would transpose every block and
+    the result; the caller places the blocks (`solver.compiled`), a plain copy."""
     sym = _Symbols(layout)
     m, n, nx = sym.m, layout.n, layout.n_unknowns
     (
@@ -414,12 +420,8 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     r0, r1 = sym.residual(tangency, loads)
     structure = _structure_rows(layout, sym.x, sym.beam.h)
     heave_columns = ca.DM(np.eye(n, nx))
-    j0 = ca.vertcat(ca.jacobian(structure, sym.x), tangency_x)
-    j1 = ca.vertcat(
-        ca.MX(3 + layout.n_strips, nx),
-        sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, sym.deformed, heave_columns),
-        ca.MX(m, nx),
-    )
+    j0_structure = ca.jacobian(structure, sym.x)
+    j1_loads = sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, sym.deformed, heave_columns)
     r0_alpha = ca.vertcat(ca.MX(3 * n, 1), tangency_a)
     r1_alpha = ca.vertcat(
         ca.MX(3 + layout.n_strips, 1),
@@ -439,7 +441,20 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     )
     drag = sym.drag(loads)
     drag_x = sym.drag(loads_x)
-    outputs = [r0, r1, j0, j1, r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x]
+    outputs = [
+        r0,
+        r1,
+        j0_structure,
+        tangency_x,
+        j1_loads,
+        r0_alpha,
+        r1_alpha,
+        lift,
+        lift_x,
+        lift_alpha,
+        drag,
+        drag_x,
+    ]
     return ca.Function(
         f"flexwing_coupled_{_tag(layout)}",
         [sym.x, sym.p],
@@ -448,8 +463,9 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         [
             "r0",
             "r1",
-            "J0",
-            "J1",
+            "J0_structure_rows",
+            "J0_tangency_rows",
+            "J1_load_rows",
             "r0_alpha",
             "r1_alpha",
             "lift",

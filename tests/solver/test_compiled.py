@@ -82,6 +82,32 @@ def test_compiled_code_and_virtual_machine_are_bit_identical(private_cache: Path
         np.testing.assert_array_equal(b, a)
 
 
+def test_the_jacobians_are_whole_fortran_ordered_and_owned_by_the_caller(
+    private_cache: Path,
+) -> None:
+    """The coupled function returns row blocks; the model places them. LAPACK factorises the
+    matrices in place only when they are Fortran-ordered, and the next evaluation must not
+    overwrite an earlier one's arrays."""
+    x, p = _random_state(N_SMALL), _parameters(N_SMALL)
+    layout = Layout(N_SMALL)
+    model = model_for(layout)
+    first = model.evaluate(x, p)
+    arrays = (first.r0, first.r1, first.jacobian0, first.jacobian1)
+    kept = [a.copy() for a in arrays]
+    with_alpha, _ = model.evaluate_with_alpha(x + 0.01, p)
+    for matrix in (first.jacobian0, first.jacobian1):
+        assert matrix.shape == (layout.n_unknowns, layout.n_unknowns)
+        assert matrix.flags.f_contiguous
+    for array, copy in zip(arrays, kept, strict=True):
+        np.testing.assert_array_equal(array, copy)
+    assert not np.array_equal(with_alpha.jacobian0, first.jacobian0)
+    # Only the bending and torsion rows of J1 carry the loads; the clamps and kinematics do not.
+    outside = np.ones(layout.n_unknowns, dtype=bool)
+    outside[layout.load_rows] = False
+    assert np.all(first.jacobian1[outside] == 0.0)
+    assert np.any(first.jacobian1[layout.load_rows] != 0.0)
+
+
 def test_a_new_process_loads_the_library_from_disk(private_cache: Path) -> None:
     model_for(Layout(N_SMALL)).wait_compiled(timeout=120)
     probe = (
