@@ -35,7 +35,7 @@ import tempfile
 import threading
 from collections.abc import Callable
 from pathlib import Path
-from typing import Literal, TypeVar
+from typing import TypeVar
 
 import casadi as ca
 import numpy as np
@@ -152,14 +152,14 @@ T = TypeVar("T")
 class _BufferedCall:
     """Calls a CasADi Function through preallocated buffers (4x cheaper than f(x, p)).
 
-    Outputs are copied out of the buffers, in C order, or with `column_major` in the Fortran
-    order CasADi writes them: the Jacobians go on to LAPACK, which factorises Fortran-ordered
-    matrices, so neither their copy nor the LU factorisation transposes them.
+    `__call__` returns copies of the outputs in C order. `collect` hands the buffers themselves
+    (Fortran order, as CasADi writes them) to a reader that copies what it keeps: the coupled
+    function's Jacobian blocks go straight into the Fortran-ordered matrices that LAPACK
+    factorises without transposing them.
     """
 
-    def __init__(self, function: ca.Function, column_major: bool = False) -> None:
+    def __init__(self, function: ca.Function) -> None:
         self._lock = threading.Lock()
-        self._order: Literal["F", "C"] = "F" if column_major else "C"
         self._x = np.zeros(function.nnz_in(0))
         self._p = np.zeros(function.nnz_in(1))
         self._outputs = [np.zeros(function.size_out(i), order="F") for i in range(function.n_out())]
@@ -173,7 +173,7 @@ class _BufferedCall:
     def __call__(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         with self._lock:
             self._evaluate_at(x, p)
-            return [out.copy(order=self._order) for out in self._outputs]
+            return [out.copy(order="C") for out in self._outputs]
 
     def collect(self, x: np.ndarray, p: np.ndarray, read: Callable[[list[np.ndarray]], T]) -> T:
         """`read(outputs)` on the output buffers themselves, under the lock: `read` copies what
@@ -192,13 +192,8 @@ _Functions = tuple[ca.Function, ca.Function, ca.Function]
 
 
 def _buffered_calls(functions: _Functions) -> list[_BufferedCall]:
-    """The coupled function's outputs (Jacobians) column-major, the others in C order."""
-    coupled, residual, panel_loads = functions
-    return [
-        _BufferedCall(coupled, column_major=True),
-        _BufferedCall(residual),
-        _BufferedCall(panel_loads),
-    ]
+    """One buffered call per function, in the order of `_Functions`."""
+    return [_BufferedCall(function) for function in functions]
 
 
 def _symbolic_functions(layout: Layout) -> _Functions:

