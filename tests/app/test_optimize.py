@@ -24,7 +24,11 @@ def test_the_study_example_is_optimised_like_python(client: httpx.Client):
     assert response.status_code == 200, response.text
     body = response.json()
     ours = solver.optimize(study.study_wing(), solver.DesignProblem(lift=300.0, velocity=12.0))
-    assert body["jig_twist"] == pytest.approx(ours.jig_twist.tolist(), abs=1e-9)
+    # The example's wing is the study's rounded to 10 digits, and IPOPT stops once its error
+    # has stayed below 1e-8 for three iterations, where the twist holds to ~1e-7 deg
+    # (`solver.optimize`): two runs whose round-off differs stop that far apart (measured
+    # 6.9e-8 deg). 1e-6 deg is ten times that, and far below any design difference.
+    assert body["jig_twist"] == pytest.approx(ours.jig_twist.tolist(), abs=1e-6)
     assert body["equilibrium"]["totals"]["lift"] == pytest.approx(300.0, rel=1e-9)
     assert body["induced_drag"] == pytest.approx(body["equilibrium"]["totals"]["induced_drag"])
     assert body["rigid"]["trefftz_span_efficiency"] == pytest.approx(1.0, abs=0.025)
