@@ -33,6 +33,7 @@ import shutil
 import subprocess
 import tempfile
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import TypeVar
@@ -77,6 +78,8 @@ _V2 = frozenset({"cx16", "lahf_lm", "popcnt", "sse4_1", "sse4_2", "ssse3"})
 _V3 = _V2 | {"avx", "avx2", "bmi1", "bmi2", "f16c", "fma", "abm", "movbe", "xsave"}
 _V4 = _V3 | {"avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl"}
 _ISA_LEVELS = (("x86-64-v4", _V4), ("x86-64-v3", _V3))
+# How often a process waiting for another one's library looks for it [s].
+_LIBRARY_POLL = 0.05
 
 
 def _cpu_features() -> frozenset[str]:
@@ -290,16 +293,30 @@ class CompiledModel:
                     self._use_library(library)
 
     def wait_compiled(self, timeout: float | None = None) -> None:
-        """Wait (up to `timeout` seconds) for the compiled library, compiling it here if no
-        process is doing so; returns on the virtual machine if compilation is disabled, fails or
-        takes longer."""
+        """Wait (up to `timeout` seconds, or for as long as it takes) for the compiled library,
+        compiling it here if no process is doing so; returns on the virtual machine if
+        compilation is disabled, fails or takes longer."""
+        deadline = None if timeout is None else time.monotonic() + timeout
         thread = self._compile_thread
         if thread is not None:
             thread.join(timeout)
-        if not self.compiled and compilation_enabled():
+            if thread.is_alive():
+                return  # still compiling here, past the timeout
+        if self.compiled or not compilation_enabled():
+            return
+        if deadline is None:
             library = _compile_library(self.layout, None, wait=True)
             if library is not None:
                 self._use_library(library)
+            return
+        # Another process holds the compile lock: look for its library until the deadline.
+        # (Waiting on the lock itself would ignore the timeout.)
+        while True:
+            self.refresh()
+            remaining = deadline - time.monotonic()
+            if self.compiled or remaining <= 0:
+                return
+            time.sleep(min(_LIBRARY_POLL, remaining))
 
     def _use_library(self, library: Path) -> None:
         tag = f"{self.layout.n}_{self.layout.chordwise}"

@@ -95,8 +95,8 @@ class Layout:
     def load_rows(self) -> np.ndarray:
         """Equations in which the aerodynamic loads appear (J1's only non-zero rows); read-only,
         built once per layout (every stability verdict reads it)."""
-        rows = np.arange(self.n_unknowns)
-        load_rows = np.r_[rows[self.bending_rows], rows[self.torsion_rows]]
+        # The torsion rows follow the bending rows.
+        load_rows = np.arange(self.bending_rows.start, self.torsion_rows.stop)
         load_rows.setflags(write=False)
         return load_rows
 

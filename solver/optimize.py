@@ -252,6 +252,7 @@ class _DesignSpace:
                 jig_twist=jig,
                 airfoil=airfoil,
                 spar=spar,
+                cl_max=w.cl_max,
             )
         return Wing.create(
             w.y,
@@ -262,6 +263,7 @@ class _DesignSpace:
             sweep=w.sweep,
             jig_twist=jig,
             airfoil=airfoil,
+            cl_max=w.cl_max,
         )
 
     # --- the equilibrium of a design
@@ -741,13 +743,14 @@ def _rigid_optimum(
 def _infeasible(
     space: _DesignSpace, constraints: _Constraints, v: np.ndarray, info: OptimizerInfo
 ) -> InfeasibleDesign:
-    """Name the constraint the optimiser could not meet (the most violated at its last point)."""
-    if constraints.failure is not None and constraints.point(v) is None:
+    """Name the constraint the optimiser could not meet (the most violated at its last point).
+
+    v: (n_design,) the last design in physical units (twist [deg], walls [m])."""
+    point = constraints.point(v / constraints.variable_scale)
+    if point is None:
         return InfeasibleDesign(
             "lift", f"no equilibrium near the last design: {constraints.failure}"
         )
-    point = constraints.point(v)
-    assert point is not None
     worst, excess = "optimizer", 0.0
     for name, scale, lower, upper in constraints.entries:
         value = point.values[name] / scale

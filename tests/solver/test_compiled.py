@@ -6,6 +6,7 @@ from __future__ import annotations
 import fcntl
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -168,6 +169,31 @@ def test_a_process_that_lost_the_compile_lock_loads_the_winners_library(
         fcntl.flock(lock, fcntl.LOCK_UN)
     compiled._compile_library(layout, None, wait=True)  # the winner finishes
     assert model_for(layout).compiled
+
+
+def test_waiting_for_a_library_another_process_compiles_ends_at_the_timeout(
+    private_cache: Path,
+) -> None:
+    """`wait_compiled(timeout)` returns on the virtual machine while another process still holds
+    the compile lock, and picks the library up once it exists."""
+    layout = Layout(N_SMALL)
+    library = compiled._library_path(layout)
+    library.parent.mkdir(parents=True, exist_ok=True)
+    with open(library.with_suffix(".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # the "other process", compiling for as long as it likes
+        model = model_for(layout)
+        waiting = threading.Thread(target=model.wait_compiled, args=(0.2,))
+        waiting.start()
+        # Far longer than the 0.2 s asked for: only a wait on the lock itself lasts this long.
+        waiting.join(60)
+        blocked = waiting.is_alive()
+        fcntl.flock(lock, fcntl.LOCK_UN)
+    waiting.join()
+    assert not blocked
+    assert not model.compiled
+    compiled._compile_library(layout, None, wait=True)  # the other process finishes
+    model.wait_compiled(timeout=30)
+    assert model.compiled
 
 
 V3_CPU = frozenset(

@@ -166,6 +166,34 @@ def test_a_lift_the_twist_bounds_cannot_reach_is_infeasible_and_says_which():
     assert raised.value.constraint in ("lift", "jig_twist")
 
 
+def test_an_infeasible_spar_sizing_is_judged_at_the_walls_ipopt_reached():
+    # Walls of at most 1 mm cannot keep the von Mises stress under a 1 MPa yield stress at 300 N
+    # of lift (14 MPa at 2 mm), so IPOPT gives up, trading stress against lift. Its last design
+    # has an equilibrium: judged at walls 1000 times too thin, it had none.
+    problem = solver.DesignProblem(
+        lift=300.0,
+        velocity=12.0,
+        size_spar=True,
+        objective="spar_mass",
+        wall_thickness_bounds=(5e-4, 1e-3),
+    )
+    with pytest.raises(solver.InfeasibleDesign) as raised:
+        solver.optimize(_spar_wing(1e6), problem)
+    assert raised.value.constraint in ("lift", "von_mises")
+    assert "IPOPT stopped with Infeasible_Problem_Detected" in str(raised.value)
+    assert "no equilibrium" not in str(raised.value)
+
+
+def test_the_designed_wing_keeps_the_sections_maximum_lift_coefficient():
+    base = study_wing()
+    wing = solver.Wing.create(
+        base.y, base.chord, 0.4, base.bending_stiffness, base.torsional_stiffness, cl_max=0.8
+    )
+    design = solver.optimize(wing, solver.DesignProblem(lift=300.0, velocity=12.0))
+    assert design.equilibrium.wing.cl_max is not None
+    assert np.all(design.equilibrium.wing.cl_max == 0.8)
+
+
 @pytest.mark.parametrize(
     ("changes", "field"),
     [
