@@ -354,7 +354,18 @@ def trimmed_divergence_limit(
         for _ in range(_LIMIT_ITERATIONS):
             if abs(q1 - q0) <= _LIMIT_TOLERANCE * q1 or g1 == g0 or not math.isfinite(g1):
                 break
-            q0, q1, g0 = q1, q1 - g1 * (q1 - q0) / (g1 - g0), g1
+            q_next = q1 - g1 * (q1 - q0) / (g1 - g0)
+            if not (math.isfinite(q_next) and q_next > 0):
+                return Fold(
+                    None,
+                    None,
+                    None,
+                    None,
+                    FlightCondition.velocity_for(q1, density),
+                    f"the secant left the positive dynamic pressures (next q = {q_next:.3g} Pa)",
+                    kind=kind,
+                )
+            q0, q1, g0 = q1, q_next, g1
             g1, point = gap(q1)
     except SolverError as error:
         return Fold(

@@ -6,6 +6,7 @@ Also `respond_async`, the dependency that turns a /sweep call with ``Prefer: res
 
 import base64
 import binascii
+import email.message
 import json
 from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
 from typing import Annotated, Any, Literal
@@ -334,6 +335,21 @@ def _prefers_async(prefer: str | None) -> bool:
     return "respond-async" in tokens
 
 
+async def _json_body(request: Request) -> bool:
+    """Whether the request has a body FastAPI reads as JSON: one of content type
+    application/json or application/*+json (FastAPI's rule, with its default strict content
+    type: any other body, or one without a content type, fails the endpoint's validation)."""
+    content_type = request.headers.get("content-type")
+    if not content_type or not await request.body():
+        return False
+    message = email.message.Message()
+    message["content-type"] = content_type
+    subtype = message.get_content_subtype()
+    return message.get_content_maintype() == "application" and (
+        subtype == "json" or subtype.endswith("+json")
+    )
+
+
 def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
     """A dependency for the endpoint of `operation`: with ``Prefer: respond-async`` the body is
     validated as the endpoint would (same 422 problems) and run as a job (202 + Location)."""
@@ -353,12 +369,14 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
         ] = None,
     ) -> None:
         nonlocal adapter
-        if not _prefers_async(prefer):
+        if not _prefers_async(prefer) or not await _json_body(request):
+            # Without a JSON body the endpoint's own validation answers (422, as without the
+            # preference): FastAPI reads the body before its dependencies run.
             return
         manager = _manager(request)
         adapter = adapter or TypeAdapter(manager.operations[operation].request_model)
         try:
-            body = adapter.validate_python(json.loads(await request.body()))
+            body = adapter.validate_python(await request.json())
         except ValidationError as error:
             errors = [dict(e) | {"loc": ("body", *e["loc"])} for e in error.errors()]
             raise RequestValidationError(errors) from None

@@ -269,6 +269,29 @@ def test_the_endpoints_own_checks_apply_at_submission(client: httpx.Client) -> N
     assert _fields(client.post("/sweep", json=sweep, headers=prefer)) == ["flight.alpha"]
 
 
+@pytest.mark.parametrize(
+    ("content_type", "content", "reason"),
+    [
+        ("application/json", b"", "Field required"),
+        ("application/json", b'{"wing": ', "invalid JSON"),
+        ("text/plain", b"{}", "Input should be a valid dictionary"),
+        (None, b"{}", "Input should be a valid dictionary"),
+    ],
+    ids=["empty-body", "broken-json", "text-plain", "no-content-type"],
+)
+def test_a_body_that_is_not_json_is_refused_with_or_without_respond_async(
+    client: httpx.Client, content_type: str | None, content: bytes, reason: str
+) -> None:
+    headers = {} if content_type is None else {"Content-Type": content_type}
+    for prefer in ({}, {"Prefer": "respond-async"}):
+        response = client.post("/sweep", content=content, headers=headers | prefer)
+        assert response.status_code == 422, response.text
+        problem = response.json()
+        assert problem["type"] == "/problems/invalid-input"
+        assert problem["errors"][0]["field"] == "body"
+        assert problem["errors"][0]["reason"].startswith(reason)
+
+
 # -------------------------------------------------------------------------------- batches
 
 

@@ -172,6 +172,19 @@ def test_trim_sweep_reports_divergence_at_a_fixed_lift():
         assert np.array_equal(alone.state, point.equilibrium.state)
 
 
+def test_a_trimmed_limit_whose_secant_leaves_positive_pressures_says_so():
+    # A millimetre chord, a near-zero stiffness, -60 deg of sweep and 30 deg of jig twist (the
+    # service's fuzzing found it): the secant's next q is negative, which no airspeed has.
+    wing = solver.Wing.create(
+        np.linspace(0.0, 5.0, 8), 0.001, 0.0, 0.001, 0.001, sweep=-59.999, jig_twist=30.0
+    )
+    limit = solver.trimmed_divergence_limit(wing, 1e-6, 1e-4)
+    assert limit.velocity is None and "positive dynamic pressures" in limit.reason
+    assert limit.searched_to_velocity > 0
+    result = solver.trim_sweep(wing, [10.0], 1e-6, 1e-4)
+    assert result.divergence.fold == limit
+
+
 def test_a_trimmed_answer_does_not_depend_on_history():
     wing, condition = study_wing(), solver.TrimCondition(15.0, STUDY_WEIGHT)
     solver.clear_caches()
