@@ -196,6 +196,8 @@ LIMITS: dict[str, Limit] = {
     "lift": Limit(-1e9, 1e9, "N", "up to a thousand airliners' weight, either sign; not 0"),
     "weight": Limit(1e-6, 1e9, "N", "a milligram to a thousand airliners"),
     "load_factor": Limit(-10.0, 10.0, "-", "past any aircraft's manoeuvre envelope; not 0"),
+    "design_lift": Limit(1e-6, 1e9, "N", "a milligram to a thousand airliners' weight"),
+    "design_load_factor": Limit(1e-3, 10.0, "-", "positive, past any aircraft's manoeuvres"),
     "heave": Limit(-1e4, 1e4, "m", "a starting deformation"),
     "slope": Limit(-1e3, 1e3, "-", "a starting deformation"),
     "twist": Limit(-360.0, 360.0, "deg", "a starting deformation"),
@@ -789,7 +791,7 @@ class OptimizeFlightAtLift(_Model):
     """The flight the design is for: `lift` at `velocity`, at a fixed jig angle `alpha`."""
 
     velocity: float = _velocity()
-    lift: float = _ranged("lift", "lift of both halves to carry, positive,", examples=[300.0])
+    lift: float = _ranged("design_lift", "lift of both halves to carry,", examples=[300.0])
     alpha: float = _design_alpha()
     density: float = _density()
 
@@ -798,8 +800,12 @@ class OptimizeFlightAtWeight(_Model):
     """The flight the design is for: `load_factor * weight` at `velocity`, at a fixed `alpha`."""
 
     velocity: float = _velocity()
-    weight: float = _weight()
-    load_factor: float = _load_factor()
+    weight: float = _ranged(
+        "weight", "weight to carry; lift = load_factor * weight,", examples=[300.0]
+    )
+    load_factor: float = _ranged(
+        "design_load_factor", "load factor n,", default=1.0, examples=[1.0]
+    )
     alpha: float = _design_alpha()
     density: float = _density()
 

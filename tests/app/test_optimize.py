@@ -59,6 +59,11 @@ def test_the_optimal_wing_solved_again_answers_the_same(client: httpx.Client):
         ({"design": {"jig_twist": {"control_points": 1}}}, "design.jig_twist.control_points"),
         ({"flight": {"velocity": 12.0, "alpha": 3.0}}, "flight"),
         ({"flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 0.0}}, "flight.load_factor"),
+        (
+            {"flight": {"velocity": 12.0, "weight": 300.0, "load_factor": -1.0}},
+            "flight.load_factor",
+        ),
+        ({"flight": {"velocity": 12.0, "lift": -300.0}}, "flight.lift"),
         ({"smoothness_weight": -1.0}, "smoothness_weight"),
     ],
     ids=[
@@ -67,6 +72,8 @@ def test_the_optimal_wing_solved_again_answers_the_same(client: httpx.Client):
         "one-control-point",
         "no-lift",
         "zero-g",
+        "negative-g",
+        "negative-lift",
         "negative-w",
     ],
 )
@@ -74,6 +81,18 @@ def test_a_problem_that_cannot_be_posed_is_a_422_naming_the_field(client, change
     response = client.post("/optimize", json=_request(**changes))
     assert response.status_code == 422, response.text
     assert field in [e["field"] for e in response.json()["errors"]], response.text
+
+
+def test_the_published_design_flight_accepts_only_positive_lift(client: httpx.Client):
+    """A design carries a positive lift: the OpenAPI document says so (a trimmed /solve takes
+    either sign, /optimize does not)."""
+    schemas = client.get("/openapi.json").json()["components"]["schemas"]
+    lift = schemas["OptimizeFlightAtLift"]["properties"]["lift"]
+    load_factor = schemas["OptimizeFlightAtWeight"]["properties"]["load_factor"]
+    assert lift["minimum"] > 0 and load_factor["minimum"] > 0
+    assert (
+        "solved for" not in schemas["OptimizeFlightAtWeight"]["properties"]["weight"]["description"]
+    )
 
 
 def test_an_infeasible_problem_says_which_constraint(client: httpx.Client):
