@@ -71,6 +71,27 @@ def solver_options(model: schemas.SolverOptions | None) -> SolverOptions:
     return SolverOptions(**{k: v for k, v in values.items() if k in _OPTION_NAMES})
 
 
+def _options(
+    model: schemas.SolverOptions | None,
+    wing: Wing | None,
+    settings: Settings,
+    errors: list[FieldError],
+) -> SolverOptions:
+    """The solver options, and the lattice they give `wing` within FLEXWING_MAX_PANELS."""
+    options = solver_options(model)
+    if wing is not None:
+        strips, k = wing.n_stations - 1, options.chordwise_panels
+        if strips * k > settings.max_panels:
+            errors.append(
+                FieldError(
+                    "options.chordwise_panels",
+                    f"gives {strips} strips x {k} = {strips * k} panels on each half wing; at "
+                    f"most {settings.max_panels} are allowed (FLEXWING_MAX_PANELS)",
+                )
+            )
+    return options
+
+
 def _stations(model: schemas.Wing) -> list[float] | np.ndarray:
     if isinstance(model.y, schemas.StationSpacing):
         return np.linspace(0.0, model.y.semispan, model.y.stations)
@@ -239,9 +260,10 @@ def solve_input(request: schemas.SolveRequest, settings: Settings) -> SolveInput
         )
     elif request.initial_guess is not None and wing is not None:
         guess = _initial_state(request.initial_guess, wing.n_stations, errors)
+    options = _options(request.options, wing, settings, errors)
     if errors or wing is None or flight is None:
         raise Problem.invalid(errors)
-    return SolveInput(wing, flight, solver_options(request.options), guess)
+    return SolveInput(wing, flight, options, guess)
 
 
 def _velocities(
@@ -270,12 +292,11 @@ def sweep_input(request: schemas.SweepRequest, settings: Settings) -> SweepInput
     f = request.flight
     # Airspeeds are in range by schema; this checks the rest with the solver's rules.
     _flight(velocities[0] if velocities else 1.0, f, errors)
+    options = _options(request.options, wing, settings, errors)
     if errors or wing is None:
         raise Problem.invalid(errors)
     alpha = f.alpha if isinstance(f, schemas.SweepFlightAtAlpha) else None
-    return SweepInput(
-        wing, tuple(velocities), alpha, _lift(f), f.density, solver_options(request.options)
-    )
+    return SweepInput(wing, tuple(velocities), alpha, _lift(f), f.density, options)
 
 
 @dataclass(frozen=True)
@@ -331,6 +352,7 @@ def optimize_input(request: schemas.OptimizeRequest, settings: Settings) -> Opti
         errors.append(FieldError(field, error.reason))
     if walls is not None and wing is not None and wing.spar is None:
         errors.append(FieldError("design.wall_thickness", "the wing has no spar to size"))
+    options = _options(request.options, wing, settings, errors)
     if errors or wing is None or problem is None:
         raise Problem.invalid(errors)
-    return OptimizeInput(wing, problem, solver_options(request.options))
+    return OptimizeInput(wing, problem, options)

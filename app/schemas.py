@@ -662,7 +662,8 @@ class SolverOptions(_Model):
         le=8,
         description=(
             "[-] panels per strip, 1 to 8, cosine spaced (AeroSandbox's default): more resolve "
-            "the camber's pitching moment; 1 is the design study's model."
+            "the camber's pitching moment; 1 is the design study's model. At most "
+            "FLEXWING_MAX_PANELS (default 240) panels on each half wing, (N - 1) k."
         ),
     )
     safety_factor: float = _ranged(

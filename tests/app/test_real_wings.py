@@ -88,3 +88,25 @@ def test_too_many_chordwise_panels_is_invalid_input(client: httpx.Client) -> Non
     response = client.post("/solve", json=body)
     assert response.status_code == 422
     assert [e["field"] for e in response.json()["errors"]] == ["options.chordwise_panels"]
+
+
+@pytest.mark.parametrize(
+    ("route", "n", "k"),
+    [("/solve", 150, 8), ("/solve", 122, 2), ("/sweep", 62, 4)],
+    ids=["solve-n150-k8", "solve-n122-k2", "sweep-n62-k4"],
+)
+def test_a_lattice_past_the_panel_limit_is_invalid_input(
+    client: httpx.Client, route: str, n: int, k: int
+) -> None:
+    """(N - 1) k <= 240 by default: a larger lattice's first solve, on the virtual machine
+    while its library compiles, would outlast the time budget (N = 150, k = 8 took 20 s)."""
+    body = study.solve_request(10.0, options={"chordwise_panels": k})
+    body["wing"] = study.wing_json(n=n)
+    if route == "/sweep":
+        body["velocities"] = [8.0, 10.0]
+        body["flight"].pop("velocity")
+    response = client.post(route, json=body)
+    assert response.status_code == 422, response.text
+    (error,) = response.json()["errors"]
+    assert error["field"] == "options.chordwise_panels"
+    assert f"{(n - 1) * k} panels" in error["reason"] and "at most 240" in error["reason"]

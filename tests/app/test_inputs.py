@@ -1,0 +1,48 @@
+"""app.inputs: a request's models become the solver's inputs, with the service's own limits
+(FLEXWING_MAX_STATIONS, FLEXWING_MAX_PANELS) checked on the way."""
+
+from __future__ import annotations
+
+import pytest
+
+from app import schemas
+from app.inputs import solve_input, sweep_input
+from app.problems import Problem
+from app.settings import Settings
+from tests import study
+
+
+def _solve(n: int, k: int) -> schemas.SolveRequest:
+    body = study.solve_request(10.0, options={"chordwise_panels": k})
+    body["wing"] = study.wing_json(n=n)
+    return schemas.SolveRequest.model_validate(body)
+
+
+@pytest.mark.parametrize(
+    ("n", "k"), [(31, 8), (61, 4), (121, 2), (150, 1)], ids=["k8", "k4", "k2", "k1-n150"]
+)
+def test_a_lattice_of_at_most_240_panels_is_accepted(n: int, k: int) -> None:
+    inputs = solve_input(_solve(n, k), Settings())
+    assert inputs.wing.n_stations == n and inputs.options.chordwise_panels == k
+
+
+@pytest.mark.parametrize(("n", "k"), [(32, 8), (62, 4), (122, 2)], ids=["k8", "k4", "k2"])
+def test_one_strip_more_is_refused_naming_the_chordwise_panels(n: int, k: int) -> None:
+    with pytest.raises(Problem) as raised:
+        solve_input(_solve(n, k), Settings())
+    (error,) = raised.value.extensions["errors"]
+    assert error["field"] == "options.chordwise_panels"
+    assert f"{(n - 1) * k} panels" in error["reason"]
+    assert "FLEXWING_MAX_PANELS" in error["reason"]
+
+
+def test_the_panel_limit_is_the_services_setting() -> None:
+    settings = Settings(max_panels=100)
+    with pytest.raises(Problem):
+        solve_input(_solve(30, 4), settings)  # 116 panels
+    body = study.solve_request(10.0, options={"chordwise_panels": 4})
+    body["velocities"] = [8.0, 10.0]
+    body["flight"].pop("velocity")
+    with pytest.raises(Problem):
+        sweep_input(schemas.SweepRequest.model_validate(body), settings)
+    assert solve_input(_solve(26, 4), settings).options.chordwise_panels == 4  # 100 panels
