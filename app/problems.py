@@ -6,7 +6,8 @@ description; clients should switch on it (or on the status) rather than parse `d
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+import logging
+from collections.abc import Awaitable, Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -16,6 +17,7 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.routing import Match
+from starlette.types import ASGIApp, Message, Receive, Scope
 
 __all__ = [
     "PROBLEM_MEDIA_TYPE",
@@ -24,9 +26,12 @@ __all__ = [
     "ProblemDetails",
     "ProblemType",
     "PROBLEM_TYPES",
+    "UnexpectedErrors",
     "install_handlers",
     "problem_response",
 ]
+
+log = logging.getLogger(__name__)
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
 
@@ -263,8 +268,41 @@ def _allowed_methods(request: Request) -> str:
     return ", ".join(allowed)
 
 
+class UnexpectedErrors:
+    """An exception no handler maps (a bug) becomes the internal-error problem here, inside every
+    other middleware (pure ASGI). Starlette's own last resort sits outside them all, so its 500
+    missed the security headers and the metrics, and it re-raises, which makes the server drop
+    the connection: a client's next request on it failed too."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(
+        self, scope: Scope, receive: Receive, send: Callable[[Message], Awaitable[None]]
+    ) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        started = False
+
+        async def send_tracked(message: Message) -> None:
+            nonlocal started
+            started = started or message["type"] == "http.response.start"
+            await send(message)
+
+        try:
+            await self.app(scope, receive, send_tracked)
+        except Exception as error:
+            if started:
+                raise  # half an answer is out: only closing the connection can say so
+            log.exception("unexpected error answering %s %s", scope["method"], scope["path"])
+            problem = Problem("internal-error", f"unexpected {type(error).__name__}")
+            await problem_response(problem, scope["path"])(scope, receive, send)
+
+
 def install_handlers(app: FastAPI) -> None:
-    """Map every exception the app can see to a problem+json response."""
+    """Map every exception the app can see to a problem+json response. Call before adding any
+    other middleware: `UnexpectedErrors` must be the innermost."""
 
     async def on_problem(request: Request, exc: Exception) -> JSONResponse:
         assert isinstance(exc, Problem)
@@ -296,4 +334,5 @@ def install_handlers(app: FastAPI) -> None:
     app.add_exception_handler(Problem, on_problem)
     app.add_exception_handler(RequestValidationError, on_validation)
     app.add_exception_handler(StarletteHTTPException, on_http)
-    app.add_exception_handler(Exception, on_error)
+    app.add_exception_handler(Exception, on_error)  # an error in a middleware itself
+    app.add_middleware(UnexpectedErrors)
