@@ -44,6 +44,12 @@ def search_velocity_limit(system: CoupledSystem, density: float, velocity: float
     return limit
 
 
+def default_search_limit(system: CoupledSystem, density: float) -> float:
+    """[m/s] how far to follow the branch when no speed is asked for: past the linear
+    divergence speed, or, for a wing without one, past the speed of its pressure scale."""
+    return _PAST_LINEAR * FlightCondition.velocity_for(pressure_scale(system), density)
+
+
 def pressure_scale(system: CoupledSystem) -> float:
     """[Pa] the wing's intrinsic pressure scale: its linear divergence pressure, or, for a wing
     that cannot diverge, where the linear theory's deformation reaches a tenth of the semispan

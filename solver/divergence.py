@@ -15,7 +15,7 @@ from typing import Literal
 
 import numpy as np
 
-from solver.branch import fold, search_velocity_limit
+from solver.branch import default_search_limit, fold, search_velocity_limit
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import linear_pressure
 from solver.results import DivergenceSummary, Equilibrium, FitDivergence, Fold, LinearDivergence
@@ -127,12 +127,14 @@ def find_fold(
 ) -> Fold:
     """The fold of the equilibrium branch from the jig shape at `alpha` [deg].
 
-    The branch is searched up to `velocity_limit` [m/s] (default: past the linear divergence
-    speed, see `solver.branch.search_velocity_limit`); speeds are at `density` [kg/m^3].
+    The branch is searched up to `velocity_limit` [m/s] (default: 1.25 times the linear
+    divergence speed, or, for a wing without one, the speed at which the linear theory's
+    deformation reaches a tenth of the semispan or 0.1 rad of twist: see
+    `solver.branch.default_search_limit`); speeds are at `density` [kg/m^3].
     """
     system = CoupledSystem.of(wing, alpha, options or SolverOptions())
     if velocity_limit is None:
-        velocity_limit = search_velocity_limit(system, density, 0.0)
+        velocity_limit = default_search_limit(system, density)
     return fold(system, density, velocity_limit)
 
 
@@ -145,13 +147,15 @@ def divergence_summary(
     options: SolverOptions | None = None,
 ) -> DivergenceSummary:
     """All three estimates: linear at the jig, the study's fit over `equilibria` (its stable
-    ones), and the fold searched up to `velocity_limit` [m/s] (default: past linear divergence
-    and 1.5 times the fastest equilibrium given)."""
+    ones), and the fold searched up to `velocity_limit` [m/s] (default: `find_fold`'s, and at
+    least 1.5 times the fastest equilibrium given)."""
     options = options or SolverOptions()
     if velocity_limit is None:
         fastest = max((e.flight.velocity for e in equilibria), default=0.0)
         system = CoupledSystem.of(wing, alpha, options)
-        velocity_limit = search_velocity_limit(system, density, fastest)
+        velocity_limit = max(
+            search_velocity_limit(system, density, fastest), default_search_limit(system, density)
+        )
     return DivergenceSummary(
         linear=linear_divergence(wing, density, options),
         fit=fit_divergence(equilibria),

@@ -15,7 +15,9 @@ import pytest
 
 from solver import (
     FlightCondition,
+    SolverOptions,
     Wing,
+    divergence_summary,
     find_fold,
     fit_divergence,
     linear_divergence,
@@ -23,6 +25,7 @@ from solver import (
     solve,
     sweep,
 )
+from solver.branch import pressure_scale
 from solver.jig import jig
 from solver.loads import lift_and_drag, panel_loads
 from solver.system import CoupledSystem
@@ -262,3 +265,16 @@ def test_elastic_axis_ahead_of_the_quarter_chord_never_diverges():
     fast = solve(wing, FlightCondition(60.0, 5.0, RHO))
     assert fast.stability.stable and fast.stability.divergence_velocity is None
     assert fast.totals.lift_amplification < 1  # wash-out: the wing unloads itself
+
+
+def test_without_a_limit_a_wing_that_cannot_diverge_is_searched_past_its_pressure_scale():
+    """No linear divergence speed to search past: the default limit is 1.25 times the speed at
+    which the linear deformation reaches a tenth of the semispan or 0.1 rad of twist."""
+    wing = rectangular_wing(10.0, elastic_axis=0.15)
+    system = CoupledSystem.of(wing, 5.0, SolverOptions())
+    scale_speed = FlightCondition.velocity_for(pressure_scale(system), RHO)
+    fold = find_fold(wing, 5.0, RHO)
+    assert fold.velocity is None and "no fold up to" in fold.reason
+    assert fold.searched_to_velocity >= 1.25 * scale_speed * (1 - 1e-12)
+    summary = divergence_summary(wing, 5.0, RHO)
+    assert summary.fold.searched_to_velocity == fold.searched_to_velocity
