@@ -1,8 +1,9 @@
 """flexwing's numerical core: static aeroelastic equilibrium of a flexible wing.
 
-A vortex lattice (one chordwise panel per strip) and a cantilever beam share the heave and twist
-unknowns; the coupled equations are solved as one nonlinear system by Newton's method on an exact
-CasADi Jacobian, compiled once per mesh size. See the design study in shared/seed/.
+A vortex lattice (1 to 8 chordwise panels per strip; the study's model has one) and a cantilever
+beam share the heave and twist unknowns; the coupled equations are solved as one nonlinear system
+by Newton's method on an exact CasADi Jacobian, compiled once per mesh size. See the design
+study in shared/seed/.
 
 This module is the package's public face: the web service and users import from here only.
 

@@ -8,8 +8,9 @@ the branch turns back to lower q, and no equilibrium on it exists beyond q_fold.
 
 Coordinates. x mixes metres, degrees and circulations, and q is in pascals, so arclength is
 measured in scaled coordinates w = z / scale: heave per semispan, slope, twist in radians,
-circulation per mean chord (each block divided by sqrt(N), so it counts as its RMS), q per a
-characteristic pressure. Only the step sizes depend on this choice, not the branch or its fold.
+circulation per mean chord (each block divided by the square root of its length, N stations or
+M panels, so it counts as its RMS), q per a characteristic pressure. Only the step sizes depend
+on this choice, not the branch or its fold.
 
 Each step: predictor w + ds t; corrector Newton on the bordered system
     [J, r1 ] dw = -[ r(x, q)                ]
@@ -70,7 +71,8 @@ class ContinuationSettings:
     max_turn: [rad] largest angle between consecutive tangents of an accepted step (so a step
         cannot jump across the fold onto a distant part of the curve unnoticed).
     max_displacement: largest corrector displacement of an accepted step, relative to the step.
-    max_steps: accepted steps before giving up.
+    max_steps: steps, accepted or rejected (each rejection halves the step), before giving
+        up.
     fold_tolerance: |dq/ds| at which the fold counts as located. q is quadratic in arclength
         there, so q's relative error is about this squared; so tight that Newton from the
         branch still finds the stable side 1e-6 below the fold (costs one or two evaluations).
@@ -93,9 +95,9 @@ class ContinuationSettings:
 class BranchPoint:
     """A converged equilibrium on the branch.
 
-    state: (4N-1,) x at this point (units in `solver.residual`).
+    state: (n,) x at this point, n = 3N + M unknowns (units in `solver.layout`).
     dynamic_pressure: q [Pa].
-    tangent: (4N,) unit tangent dw/ds in scaled coordinates, oriented along the branch.
+    tangent: (n + 1,) unit tangent dw/ds in scaled coordinates, oriented along the branch.
     arclength: s [-] from the jig, in scaled coordinates (chord lengths between points).
     """
 
@@ -116,7 +118,7 @@ class Branch:
     """The branch from the jig shape up to its fold or to the search limit.
 
     points: jig first, ordered along the branch; if `folded`, the last point is the fold.
-    scale: (4N,) z = scale * w.
+    scale: (n + 1,) z = scale * w.
     q_limit: [Pa] the search limit it was traced for.
     evaluations: model evaluations spent.
     reason: why it stopped short of both the fold and q_limit (None otherwise).
@@ -139,7 +141,7 @@ class Branch:
         return max(point.dynamic_pressure for point in self.points)
 
     def start_for(self, q: float) -> np.ndarray:
-        """(4N-1,) a starting state for Newton at q [Pa] on the stable part of the branch.
+        """(n,) a starting state for Newton at q [Pa] on the stable part of the branch.
 
         Cubic Hermite interpolation in arclength between the two branch points that bracket q
         (error O(ds^4), so Newton starts well inside its basin even close to the fold); beyond
@@ -234,7 +236,8 @@ def scaled_norm(dx: np.ndarray, scale: np.ndarray) -> float:
 
 
 def _bordered(evaluation: Evaluation, q: float, scale: np.ndarray, row: np.ndarray) -> np.ndarray:
-    """(4N, 4N) [[J scale_x, r1 scale_q], [row]]: the scaled augmented Jacobian, bordered."""
+    """(n + 1, n + 1) [[J scale_x, r1 scale_q], [row]]: the scaled augmented Jacobian,
+    bordered."""
     n = evaluation.r0.size
     matrix = np.empty((n + 1, n + 1))
     matrix[:n, :n] = evaluation.jacobian(q) * scale[:-1]

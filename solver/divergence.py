@@ -60,7 +60,7 @@ def fit_divergence(
     amplification "CL": A = CL / CL_rigid with CL on the deformed planform area and CL_rigid on
     the jig area, as the study computes it (its numbers: intercept 0.998, q_div 419 Pa); "lift":
     A = L / L_rigid; "lift_effectiveness": A = the trimmed wing's flexible over rigid lift-curve
-    slope. V_div uses the density of the first equilibrium.
+    slope. V_div uses the density of the stable equilibrium of lowest q.
     """
     if amplification not in ("CL", "lift", "lift_effectiveness"):
         raise ValueError(

@@ -32,6 +32,13 @@ class Evaluation:
     def nbytes(self) -> int:
         return self.r0.nbytes + self.r1.nbytes + self.jacobian0.nbytes + self.jacobian1.nbytes
 
+    def read_only(self) -> Evaluation:
+        """This evaluation with its arrays made read-only (it is kept in a cache and shared by
+        every answer that starts from it), returned for chaining."""
+        for array in (self.r0, self.r1, self.jacobian0, self.jacobian1):
+            array.setflags(write=False)
+        return self
+
 
 @dataclass(frozen=True)
 class AlphaTerms:

@@ -373,8 +373,9 @@ class ValidityLimits:
     """Where an answer leaves the model's validity: the limits each finding is judged against
     (`solver.validity`). They change what is said about an answer, never its numbers.
 
-    The model is a linear, small-displacement beam whose torque is taken about the undeformed
-    elastic axis, coupled to an inviscid lattice that never stalls (the design study, 14.7).
+    The model is a linear, small-displacement beam whose torque is taken about the elastic axis
+    without its deformation (the study's; `torque_axis = "deformed"` follows its heave, never its
+    twist), coupled to an inviscid lattice that never stalls (the design study, 14.7).
     Each default is where that idealisation starts to cost more than a few percent, or where a
     real wing would behave otherwise:
 

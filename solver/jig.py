@@ -73,7 +73,10 @@ def _evaluate_at_rest(system: CoupledSystem) -> AtRest:
     evaluation, terms = system.at_alpha(0.0).evaluate_with_alpha(np.zeros(system.layout.n_unknowns))
     states = np.linalg.solve(evaluation.jacobian0, -np.column_stack([evaluation.r0, terms.r0]))
     beam = beam_response(evaluation, system.layout)
-    return AtRest(evaluation, states[:, 0].copy(), states[:, 1] / DEG, beam, terms.lift_x)
+    beam.setflags(write=False)
+    return AtRest(
+        evaluation.read_only(), states[:, 0].copy(), states[:, 1] / DEG, beam, terms.lift_x
+    )
 
 
 def at_rest(system: CoupledSystem) -> AtRest:
@@ -116,7 +119,7 @@ class Jig:
 def _solve_jig(system: CoupledSystem) -> Jig:
     state = at_rest(system).rigid_state(system.alpha)
     state.setflags(write=False)
-    evaluation = system.evaluate(state)
+    evaluation = system.evaluate(state).read_only()
     return Jig(state, evaluation, rigid_loads(system, state), is_unloaded(system, state))
 
 

@@ -323,7 +323,7 @@ class _DesignSpace:
         r_v[:, : self.n_twist] = jig_rows @ self.basis
         moment, torque = self._internal_loads(ev.r1, tube)  # per unit q
         if self.n_wall:
-            r_v[:, self.n_twist :] = self._stiffness_rows(moment, torque, tube, wall_rows=True)
+            r_v[:, self.n_twist :] = self._stiffness_rows(moment, torque, tube)
         if self.rigid:
             sensitivity = np.zeros((nx, nv))
             rows, cols = layout.tangency_rows, layout.circulation
@@ -403,7 +403,7 @@ class _DesignSpace:
             )
         return out
 
-    def _stiffness_rows(self, moment, torque, tube, wall_rows: bool) -> np.ndarray:
+    def _stiffness_rows(self, moment, torque, tube) -> np.ndarray:
         """(n, N) d(q r1)/d(wall thickness): EI and GJ enter the trapezoid rows only."""
         layout, q, n = self.layout, self.q, self.wing.n_stations
         outer, wall = tube.outer_diameter, tube.wall_thickness
@@ -471,9 +471,9 @@ class _DesignSpace:
 class _Functions(ca.Callback):
     """v -> (objective, constraints) for IPOPT, from a `_DesignSpace`."""
 
-    def __init__(self, space: _DesignSpace, layout: _Constraints) -> None:
+    def __init__(self, space: _DesignSpace, constraints: _Constraints) -> None:
         ca.Callback.__init__(self)
-        self.space, self.layout = space, layout
+        self.space, self.constraints = space, constraints
         self.jacobian_callback: _Jacobian | None = None
         self.construct("flexwing_design", {})
 
@@ -487,26 +487,28 @@ class _Functions(ca.Callback):
         return ca.Sparsity.dense(self.space.n_design, 1)
 
     def get_sparsity_out(self, i: int) -> ca.Sparsity:
-        return ca.Sparsity.dense(1, 1) if i == 0 else ca.Sparsity.dense(self.layout.size, 1)
+        return ca.Sparsity.dense(1, 1) if i == 0 else ca.Sparsity.dense(self.constraints.size, 1)
 
     def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
-        point = self.layout.point(np.array(arg[0]).ravel())
+        point = self.constraints.point(np.array(arg[0]).ravel())
         if point is None:
-            return [ca.DM(math.nan), ca.DM.nan(self.layout.size, 1)]
-        return [ca.DM(self.layout.objective(point)), ca.DM(self.layout.values(point))]
+            return [ca.DM(math.nan), ca.DM.nan(self.constraints.size, 1)]
+        return [ca.DM(self.constraints.objective(point)), ca.DM(self.constraints.values(point))]
 
     def has_jacobian(self) -> bool:
         return True
 
     def get_jacobian(self, name: str, inames: Any, onames: Any, opts: Any) -> ca.Function:
-        self.jacobian_callback = _Jacobian(name, self.space, self.layout, opts)
+        self.jacobian_callback = _Jacobian(name, self.space, self.constraints, opts)
         return self.jacobian_callback
 
 
 class _Jacobian(ca.Callback):
-    def __init__(self, name: str, space: _DesignSpace, layout: _Constraints, opts: Any) -> None:
+    def __init__(
+        self, name: str, space: _DesignSpace, constraints: _Constraints, opts: Any
+    ) -> None:
         ca.Callback.__init__(self)
-        self.space, self.layout = space, layout
+        self.space, self.constraints = space, constraints
         self.construct(name, opts)
 
     def get_n_in(self) -> int:
@@ -516,21 +518,21 @@ class _Jacobian(ca.Callback):
         return 2
 
     def get_sparsity_in(self, i: int) -> ca.Sparsity:
-        sizes = (self.space.n_design, 1, self.layout.size)
+        sizes = (self.space.n_design, 1, self.constraints.size)
         return ca.Sparsity.dense(sizes[i], 1)
 
     def get_sparsity_out(self, i: int) -> ca.Sparsity:
-        rows = 1 if i == 0 else self.layout.size
+        rows = 1 if i == 0 else self.constraints.size
         return ca.Sparsity.dense(rows, self.space.n_design)
 
     def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
-        point = self.layout.point(np.array(arg[0]).ravel())
+        point = self.constraints.point(np.array(arg[0]).ravel())
         nv = self.space.n_design
         if point is None:
-            return [ca.DM.nan(1, nv), ca.DM.nan(self.layout.size, nv)]
+            return [ca.DM.nan(1, nv), ca.DM.nan(self.constraints.size, nv)]
         return [
-            ca.DM(self.layout.objective_gradient(point)[None, :]),
-            ca.DM(self.layout.jacobian(point)),
+            ca.DM(self.constraints.objective_gradient(point)[None, :]),
+            ca.DM(self.constraints.jacobian(point)),
         ]
 
 

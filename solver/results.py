@@ -11,7 +11,6 @@ both halves of the wing.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -109,7 +108,11 @@ class Panels:
     )
     lift: np.ndarray = quantity("N", "vertical force on the strip")
     lift_per_span: np.ndarray = quantity("N/m", "vertical force per jig strip width")
-    torque: np.ndarray = quantity("N m", "torque about the undeformed elastic axis")
+    torque: np.ndarray = quantity(
+        "N m",
+        "torque about the elastic axis: the undeformed one, or the heaved one with "
+        "options.torque_axis = 'deformed'",
+    )
     rigid_lift_per_span: np.ndarray = quantity(
         "N/m",
         "the rigid jig's vertical force per strip width at the same condition (trimmed: the "
@@ -248,7 +251,10 @@ class Fold:
     reason: str | None = quantity("", "why the values are null, else null", default=None)
     tip_heave: float | None = quantity("m", "tip heave at the fold", default=None)
     evaluations: int = quantity(
-        "-", "model evaluations the continuation spent to this speed", default=0
+        "-",
+        "model evaluations the continuation spent to this speed (trimmed_stability_limit: "
+        "Newton iterations of the trimmed solves that located it)",
+        default=0,
     )
     kind: Literal["fold", "trimmed_stability_limit"] = quantity(
         "",
@@ -268,7 +274,7 @@ FINDING_CODES: dict[FindingCode, str] = {
     ),
     "large_twist": (
         "the twist about the elastic axis exceeds its limit: the beam's torsion is linear, with "
-        "small-angle kinematics and the torque about the undeformed elastic axis"
+        "small-angle kinematics and the torque about an elastic axis that does not twist"
     ),
     "section_stall": (
         "a strip's section lift coefficient exceeds its airfoil's maximum (wing.cl_max, or "
@@ -551,7 +557,3 @@ class OptimalDesign:
         "", "the same problem's optimum for a rigid wing, or null (objective spar_mass)"
     )
     optimizer: OptimizerInfo = quantity("", "what IPOPT did")
-
-
-def finite_or_none(value: float | None) -> float | None:
-    return None if value is None or not math.isfinite(value) else float(value)

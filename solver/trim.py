@@ -380,7 +380,7 @@ def trimmed_divergence_limit(
     velocity = FlightCondition.velocity_for(q1, density)
     if not (math.isfinite(g1) and abs(q1 - q0) <= 1e-6 * q1):
         return Fold(None, None, None, None, velocity, "the secant did not settle", kind=kind)
-    stations = judge(
+    totals = judge(
         point.system,
         point.flight,
         options,
@@ -395,10 +395,10 @@ def trimmed_divergence_limit(
     return Fold(
         velocity=velocity,
         dynamic_pressure=q1,
-        tip_twist=stations.tip_twist,
+        tip_twist=totals.tip_twist,
         lift=lift,
         searched_to_velocity=velocity,
-        tip_heave=stations.tip_heave,
+        tip_heave=totals.tip_heave,
         evaluations=evaluations,
         kind=kind,
     )

@@ -164,7 +164,7 @@ def _twist(stations: Stations, limits: ValidityLimits) -> list[Finding]:
             f"The twist about the elastic axis reaches {twist:+.3g} deg "
             f"({'nose-up' if twist > 0 else 'nose-down'}) at y = {stations.y[worst]:.3g} m, "
             f"beyond the {limits.twist:.3g} deg up to which the beam's linear torsion (small "
-            "angles, torque about the undeformed elastic axis) holds; it is above that "
+            "angles, torque about an elastic axis that does not twist) holds; it is above that "
             f"{_span(stations.y, exceeded.indices)}.",
             "twist",
             "stations",

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import solver
-from solver.jig import jig
+from solver.evaluation import Evaluation
+from solver.jig import at_rest, jig
 from solver.system import CoupledSystem
 from tests.study import DENSITY, flight, study_wing
 
@@ -45,3 +46,18 @@ def test_the_study_wings_linear_divergence_matches_the_notes():
     q_div = solver.linear_divergence_pressure(study_wing())
     assert q_div == pytest.approx(359.26, abs=0.01)
     assert solver.FlightCondition.velocity_for(q_div, DENSITY) == pytest.approx(24.22, abs=0.005)
+
+
+def test_what_the_cache_keeps_of_the_jig_cannot_be_written():
+    """Every answer from the jig starts from these arrays, and an answer may carry them: a
+    caller writing into one must not change the next answer."""
+    system = CoupledSystem(study_wing(), 5.0)
+    kept = [jig(system).state, *_arrays(jig(system).evaluation), at_rest(system).beam]
+    kept += _arrays(at_rest(system).evaluation)
+    for array in kept:
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 1.0
+
+
+def _arrays(evaluation: Evaluation) -> list[np.ndarray]:
+    return [evaluation.r0, evaluation.r1, evaluation.jacobian0, evaluation.jacobian1]
