@@ -28,9 +28,9 @@ from app.settings import Settings, get_settings
 __all__ = ["app", "create_app"]
 
 DESCRIPTION = """\
-Static aeroelastic equilibrium of flexible wings: a vortex lattice (one chordwise panel per strip)
-coupled to a cantilever beam, solved as one nonlinear system by Newton's method on an exact
-Jacobian (see the design study, chapter 14).
+Static aeroelastic equilibrium of flexible wings: a vortex lattice (1 to 8 chordwise panels per
+strip; the study's model has one) coupled to a cantilever beam, solved as one nonlinear system by
+Newton's method on an exact Jacobian (see the design study, chapter 14).
 
 Units are SI, angles in degrees. Errors are RFC 9457 `application/problem+json`; the `type` of
 each problem is a URI under `/problems/`. The examples are the design study's wing.
@@ -129,7 +129,9 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
             routes=app.routes,
             tags=[
                 {"name": "equilibrium", "description": "Solve for aeroelastic equilibria."},
-                {"name": "operations", "description": "Liveness and readiness."},
+                {"name": "design", "description": "Optimise a wing's jig twist and spar."},
+                {"name": "jobs", "description": "Long work in the background, and batches."},
+                {"name": "operations", "description": "Liveness, readiness and metrics."},
             ],
         )
         for path in schema.get("paths", {}).values():

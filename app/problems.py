@@ -113,8 +113,8 @@ PROBLEM_TYPES = _types(
         "solve-timeout",
         "Solve exceeded its time budget",
         504,
-        "The solve ran longer than its budget (FLEXWING_SOLVE_TIMEOUT or FLEXWING_SWEEP_TIMEOUT, "
-        "`timeout` [s]); its worker was recycled.",
+        "The solve ran longer than its budget (FLEXWING_SOLVE_TIMEOUT, FLEXWING_SWEEP_TIMEOUT "
+        "or FLEXWING_OPTIMIZE_TIMEOUT, `timeout` [s]); its worker was recycled.",
     ),
     ProblemType("not-found", "Not found", 404, "No such resource."),
     ProblemType("method-not-allowed", "Method not allowed", 405, "Use another HTTP method."),
@@ -246,7 +246,7 @@ def validation_errors(raw: Sequence[Any]) -> list[FieldError]:
         if loc and loc[0] == "body":
             loc = loc[1:]
         kind = error.get("type", "")
-        # Drop the tags of the number-or-list unions (schemas: "@number", "@list", "@range").
+        # Drop the tags of the schemas' tagged unions ("@number", "@list", "@object", ...).
         loc = [p for p in loc if not (isinstance(p, str) and p.startswith("@"))]
         field = _location(loc) or "body"
         reason = str(error.get("msg", "invalid"))
@@ -259,7 +259,8 @@ def validation_errors(raw: Sequence[Any]) -> list[FieldError]:
 
 def _allowed_methods(request: Request) -> str:
     """Every method some route serves at this path (RFC 9110: a 405 lists them all in Allow;
-    Starlette lists only those of the first route whose path matched). HEAD comes with GET."""
+    Starlette lists only those of the first route whose path matched). FastAPI's routes do not
+    answer HEAD, so it is listed only where a route does (the static files)."""
     allowed = []
     for method in ("DELETE", "GET", "HEAD", "PATCH", "POST", "PUT"):
         scope = {**request.scope, "method": method}

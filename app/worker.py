@@ -11,10 +11,8 @@ from __future__ import annotations
 import logging
 import math
 import os
-import time
-from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal, TypeVar
+from typing import Any, Literal
 
 import numpy as np
 
@@ -44,17 +42,14 @@ __all__ = [
     "SweepJob",
     "SweepOutcome",
     "WarmReport",
-    "initialize",
     "OptimizeJob",
     "run_optimize",
     "run_solve",
     "run_sweep",
-    "run_timed",
     "warm",
 ]
 
 Payload = dict[str, Any]
-T = TypeVar("T")
 
 log = logging.getLogger(__name__)
 
@@ -120,45 +115,20 @@ class WarmReport:
 # ------------------------------------------------------------------------- process lifetime
 
 
-# The local pool's shared arrays, by dispatch slot: job start time (time.monotonic()) and pid.
-_starts: Any = None
-_pids: Any = None
-_warmed: dict[int, bool] = {}
-
-
-def initialize(
-    warm_stations: tuple[int, ...], timeout: float, starts: Any = None, pids: Any = None
-) -> None:
-    """Pool initializer: compile or load the solver functions of the common mesh sizes.
+def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
+    """Compile or load the solver functions of the common mesh sizes in this worker (each one
+    waits up to `timeout` seconds) and report which are served compiled.
 
     Never raises: a worker whose compilation failed still serves from CasADi's virtual machine.
     """
-    global _starts, _pids
-    if starts is not None:
-        _starts, _pids = starts, pids
+    compiled = {}
     for n in warm_stations:
         try:
-            _warmed[n] = warm_up(n, timeout)
+            compiled[n] = warm_up(n, timeout)
         except Exception:
             log.exception("warming N=%d failed; this worker uses CasADi's VM for it", n)
-            _warmed[n] = False
-
-
-def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
-    """Warm this worker (quick after the initializer) and report what it serves compiled.
-
-    Executors without an initializer (e.g. Dask's) are warmed by this job alone.
-    """
-    initialize(warm_stations, timeout)
-    return WarmReport(os.getpid(), {n: _warmed.get(n, False) for n in warm_stations})
-
-
-def run_timed(slot: int | None, fn: Callable[[Any], T], job: Any) -> T:
-    """Run `fn(job)`, first noting its start in the pool's shared clock (its time budget)."""
-    if slot is not None and _starts is not None:
-        _pids[slot] = os.getpid()
-        _starts[slot] = time.monotonic()
-    return fn(job)
+            compiled[n] = False
+    return WarmReport(os.getpid(), compiled)
 
 
 # --------------------------------------------------------------------------------- the jobs

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -23,7 +24,14 @@ PATH = Path(__file__).resolve().with_name("openapi.json")
 
 
 def render() -> str:
-    app = create_app(Settings(workers=1))  # no pool starts: the lifespan never runs
+    """The document of the default settings, whatever FLEXWING_* variables this shell has."""
+    configured = {k: v for k, v in os.environ.items() if k.startswith("FLEXWING_")}
+    for name in configured:
+        del os.environ[name]
+    try:
+        app = create_app(Settings(workers=1))  # no pool starts: the lifespan never runs
+    finally:
+        os.environ.update(configured)
     return json.dumps(app.openapi(), indent=2, sort_keys=True, ensure_ascii=False) + "\n"
 
 

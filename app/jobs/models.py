@@ -108,7 +108,7 @@ class JobStatus(BaseModel):
     """A job's state; `result` or `problem` once it has finished."""
 
     id: str = Field(description="Unguessable job id (128 random bits, URL-safe base64).")
-    operation: str = Field(description="What the job runs: solve, sweep or batch.")
+    operation: str = Field(description="What the job runs: solve, sweep, optimize or batch.")
     status: JobState = Field(
         description=(
             "queued (waiting for a runner), running, succeeded (`result`), failed (`problem`), "

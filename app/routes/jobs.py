@@ -128,7 +128,7 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
         status_code=202,
         response_model=JobStatus,
         responses=_SUBMIT_RESPONSES,
-        summary="Run a solve, a sweep or a batch of solves as a job",
+        summary="Run a solve, a sweep, an optimisation or a batch of solves as a job",
     )
     async def submit_job(
         body: Annotated[submission, Body(openapi_examples=examples)],  # type: ignore[valid-type]

@@ -6,7 +6,7 @@ from typing import Any
 
 from app.problems import ProblemDetails
 
-__all__ = ["OPTIMIZE_ERRORS", "SOLVE_ERRORS"]
+__all__ = ["OPTIMIZE_ERRORS", "SOLVE_ERRORS", "SWEEP_ERRORS"]
 
 
 def _problem(description: str) -> dict[str, Any]:
@@ -25,6 +25,14 @@ SOLVE_ERRORS: dict[int | str, dict[str, Any]] = {
         "/problems/worker-lost); see Retry-After."
     ),
     504: _problem("The solve exceeded its time budget (/problems/solve-timeout)."),
+}
+
+SWEEP_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field). A speed without "
+        "an equilibrium is answered in its point (`status`, `no_equilibrium`), never with a 422."
+    ),
+    504: _problem("The sweep exceeded its time budget (/problems/solve-timeout)."),
 }
 
 OPTIMIZE_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {

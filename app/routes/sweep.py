@@ -6,7 +6,7 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Body, Request
 
-from app.routes.responses import SOLVE_ERRORS
+from app.routes.responses import SWEEP_ERRORS
 from app.schemas import SWEEP_EXAMPLES, SweepRequest, SweepResponse
 
 __all__ = ["router"]
@@ -18,7 +18,7 @@ router = APIRouter(tags=["equilibrium"])
     "/sweep",
     operation_id="sweep",
     response_model=SweepResponse,
-    responses=SOLVE_ERRORS,
+    responses=SWEEP_ERRORS,
     summary="Equilibria of a wing over airspeeds, and its torsional divergence",
 )
 async def sweep(
