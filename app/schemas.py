@@ -21,7 +21,7 @@ import dataclasses
 import math
 from typing import Annotated, Any, Literal, NamedTuple, TypeVar
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, Tag
 
 import solver
 from app.results import OptimizeResponse, SolveResponse, SweepResponse
@@ -288,6 +288,17 @@ class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True)
 
 
+def _whole_number(value: object) -> object:
+    """30.0 is the integer 30 to JSON Schema (and to JSON: one number type), so it is to us."""
+    if type(value) is float and value.is_integer():
+        return int(value)
+    return value
+
+
+# A count or an index: JSON Schema's "integer", which 30.0 is; 30.5, "30" and true are not.
+Integer = Annotated[int, BeforeValidator(_whole_number)]
+
+
 # ----------------------------------------------------------------------------------- requests
 
 
@@ -295,7 +306,7 @@ class StationSpacing(_Model):
     """`stations` evenly spaced stations from the root (y = 0) to the tip (y = semispan)."""
 
     semispan: float = _ranged("semispan", "tip station,")
-    stations: int = Field(
+    stations: Integer = Field(
         ge=MIN_STATIONS,
         le=MAX_ARRAY_LENGTH,
         description="[-] number of stations N, root and tip included.",
@@ -646,7 +657,7 @@ class SolverOptions(_Model):
             "m, twist rows in deg, flow-tangency rows per unit airspeed."
         ),
     )
-    max_iterations: int = Field(
+    max_iterations: Integer = Field(
         default=30, ge=1, le=200, description="[-] Newton iterations of one attempt, 1 to 200."
     )
     find_fold: bool = Field(
@@ -656,7 +667,7 @@ class SolverOptions(_Model):
             "divergence ends it) and report it in `fold`. Costs a continuation run."
         ),
     )
-    chordwise_panels: int = Field(
+    chordwise_panels: Integer = Field(
         default=1,
         ge=1,
         le=8,
@@ -737,7 +748,7 @@ class VelocityRange(_Model):
 
     start: float = _ranged("velocity", "first airspeed,")
     stop: float = _ranged("velocity", "last airspeed,")
-    count: int = Field(
+    count: Integer = Field(
         ge=1,
         le=MAX_ARRAY_LENGTH,
         description="[-] number of airspeeds, 1 to FLEXWING_MAX_SWEEP_POINTS (default 50).",
@@ -835,15 +846,16 @@ OptimizeFlight = Annotated[
 class TwistDesign(_Model):
     """The jig twist as design variables."""
 
-    control_points: int | None = Field(
-        default=6,
-        ge=2,
-        le=50,
-        description=(
-            "[-] k values at evenly spaced fractions of the semispan, 2 to 50, joined by a cubic "
-            "spline with zero slope at the root (smooth: the default, 6); null: every station's "
-            "jig twist is a variable (then the total twist's root slope is held at zero)."
-        ),
+    control_points: Annotated[int, Field(ge=2, le=50), BeforeValidator(_whole_number)] | None = (
+        Field(
+            default=6,
+            description=(
+                "[-] k values at evenly spaced fractions of the semispan, 2 to 50, joined by a "
+                "cubic spline with zero slope at the root (smooth: the default, 6); null: every "
+                "station's jig twist is a variable (then the total twist's root slope is held at "
+                "zero)."
+            ),
+        )
     )
     lower: float = _ranged("design_twist", "lowest jig twist at any station,", default=-15.0)
     upper: float = _ranged("design_twist", "highest jig twist at any station,", default=15.0)

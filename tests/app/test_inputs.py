@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import pytest
+from pydantic import ValidationError
 
 from app import schemas
 from app.inputs import solve_input, sweep_input
@@ -46,3 +47,27 @@ def test_the_panel_limit_is_the_services_setting() -> None:
     with pytest.raises(Problem):
         sweep_input(schemas.SweepRequest.model_validate(body), settings)
     assert solve_input(_solve(26, 4), settings).options.chordwise_panels == 4  # 100 panels
+
+
+@pytest.mark.parametrize(
+    ("value", "accepted"),
+    [(4, True), (4.0, True), (4.5, False), ("4", False), (True, False)],
+    ids=["int", "whole-float", "fraction", "string", "boolean"],
+)
+def test_a_count_is_a_json_schema_integer(value: object, accepted: bool) -> None:
+    """JSON has one number type, and JSON Schema's "integer" is any whole number: 4.0 too."""
+    body = study.solve_request(10.0, options={"chordwise_panels": value})
+    body["wing"]["y"] = {"semispan": 1.5, "stations": value}
+    body["velocities"] = {"start": 8.0, "stop": 12.0, "count": value}
+    body["flight"].pop("velocity")
+    if not accepted:
+        with pytest.raises(ValidationError) as raised:
+            schemas.SweepRequest.model_validate(body)
+        fields = {".".join(map(str, e["loc"])) for e in raised.value.errors()}
+        assert {"options.chordwise_panels", "wing.y.@object.stations"} <= fields
+        assert any(field.endswith(".count") for field in fields)
+        return
+    request = schemas.SweepRequest.model_validate(body)
+    assert request.options is not None and request.options.chordwise_panels == 4
+    assert request.velocities.count == 4  # type: ignore[union-attr]
+    assert request.wing.y.stations == 4  # type: ignore[union-attr]
