@@ -144,7 +144,9 @@ def _wing(model: schemas.Wing, settings: Settings, errors: list[FieldError]) -> 
         )
         return None
     semispan = LIMITS["semispan"]
-    if len(y) and y[-1] < semispan.minimum:
+    # Only of stations that rise from the root: of any others the solver says what is wrong.
+    rising = len(y) > 0 and y[0] == 0 and bool(np.all(np.diff(y) > 0))
+    if rising and y[-1] < semispan.minimum:
         errors.append(
             FieldError(
                 "wing.y", f"the semispan (the last station) must be at least {semispan.minimum:g} m"

@@ -71,3 +71,21 @@ def test_a_count_is_a_json_schema_integer(value: object, accepted: bool) -> None
     assert request.options is not None and request.options.chordwise_panels == 4
     assert request.velocities.count == 4  # type: ignore[union-attr]
     assert request.wing.y.stations == 4  # type: ignore[union-attr]
+
+
+@pytest.mark.parametrize(
+    ("y", "reason"),
+    [
+        ([1.5, 1.0, 0.5, 0.0], "the first station must be the root"),
+        ([0.0, 1.0, 0.5, 1.5], "strictly increasing"),
+        ([0.0, 0.002, 0.004, 0.006], "the semispan (the last station) must be at least 0.01 m"),
+    ],
+    ids=["reversed", "not-increasing", "too-short"],
+)
+def test_stations_are_refused_for_what_is_wrong_with_them(y: list[float], reason: str) -> None:
+    body = study.solve_request(10.0)
+    body["wing"] = study.wing_json(n=4) | {"y": y}
+    with pytest.raises(Problem) as raised:
+        solve_input(schemas.SolveRequest.model_validate(body), Settings())
+    (error,) = raised.value.extensions["errors"]
+    assert error["field"] == "wing.y" and reason in error["reason"]
