@@ -93,6 +93,19 @@ def test_no_module_imports_inside_a_function(package: str):
         assert not nested, f"{package}.{name} imports inside a function at lines {nested}"
 
 
+@pytest.mark.parametrize("package", ["solver", "app"])
+def test_no_module_imports_relatively(package: str):
+    """The layer and public-face checks read absolute imports only: a relative one would pass
+    them unseen."""
+    for name, path in _modules(package).items():
+        relative = [
+            node.lineno
+            for node in ast.walk(ast.parse(path.read_text()))
+            if isinstance(node, ast.ImportFrom) and node.level > 0
+        ]
+        assert not relative, f"{package}.{name} imports relatively at lines {relative}"
+
+
 @pytest.mark.parametrize("module", sorted(_modules("app")))
 def test_app_uses_only_the_solvers_public_face(module: str):
     imported, _ = _imports(_modules("app")[module])

@@ -95,12 +95,14 @@ LOCAL = Settings(workers=1, jobs_per_worker=2, warm_stations=[], start_method="f
 
 
 def test_a_job_queued_behind_another_has_its_budget_counted_from_its_own_start() -> None:
-    """One worker, two jobs of 0.6 s each with a budget of 1 s: the second waits 0.6 s behind
-    the first, then runs 0.6 s (1.2 s after submission), within its budget."""
+    """One worker: a job of 2 s (budget 10 s), then one of 0.1 s with a budget of 1 s. The
+    second waits 2 s behind the first, twice its budget, and runs well within it: only a budget
+    counted from submission would stop it (ample slack both ways on a loaded machine)."""
 
     async def scenario(pool: WorkerPool) -> list[int]:
         jobs = [
-            pool.run(pool_jobs.sleep_then_pid, 0.6, timeout=1.0, kind="solve") for _ in range(2)
+            pool.run(pool_jobs.sleep_then_pid, 2.0, timeout=10.0, kind="solve"),
+            pool.run(pool_jobs.sleep_then_pid, 0.1, timeout=1.0, kind="solve"),
         ]
         return list(await asyncio.gather(*jobs))
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 import asyncio
 
 import httpx
+import pytest
 from fastapi import FastAPI
 
 from app import security
-from app.problems import PROBLEM_MEDIA_TYPE, install_handlers
+from app.problems import PROBLEM_MEDIA_TYPE, install_handlers, validation_errors
 from app.settings import Settings
 
 
@@ -49,3 +50,17 @@ def test_an_unexpected_error_is_a_500_problem_with_the_security_headers() -> Non
         assert response.headers["x-content-type-options"] == "nosniff"
         assert response.headers["cache-control"] == "no-store"
     assert fine.json() == {"fine": True}
+
+
+@pytest.mark.parametrize(
+    ("loc", "field"),
+    [
+        (("body", "wing", "chord", 3), "wing.chord[3]"),
+        (("body", "wing", "elastic_axis", "@list", 1), "wing.elastic_axis[1]"),
+        (("body", "velocities", "@range", "count"), "velocities.count"),
+        (("body",), "body"),
+    ],
+)
+def test_validation_error_paths(loc: tuple[object, ...], field: str) -> None:
+    errors = validation_errors([{"loc": loc, "msg": "bad", "type": "x"}])
+    assert [(e.field, e.reason) for e in errors] == [(field, "bad")]

@@ -99,16 +99,18 @@ def test_the_lift_is_held(lift: float):
     assert np.sign(trimmed.totals.alpha) == np.sign(lift)
 
 
-def test_load_factor_scales_the_trim_like_more_weight():
+def test_twice_the_lift_needs_more_alpha_but_less_than_the_rigid_wing_and_twice_the_moment():
     wing, velocity = study_wing(), 12.0
     two_g = solver.trim(wing, solver.TrimCondition(velocity, 2 * STUDY_WEIGHT))
     one_g = solver.trim(wing, solver.TrimCondition(velocity, STUDY_WEIGHT))
-    # Twice the lift needs more than twice the rigid incidence only through the nonlinearity;
-    # the flexible wing twists nose-up under the load, so it needs less alpha than the rigid one.
+    # The flexible wing twists nose-up under the load, so it needs less alpha than the rigid one.
     assert two_g.totals.alpha > one_g.totals.alpha
     assert two_g.totals.alpha < two_g.totals.rigid_alpha
+    # The root moment comes from the vertical force in the wing's axes, the trim holds the lift
+    # across the freestream: they differ by the change of alpha (1.9886 here, and 1.9896 for a
+    # wing 100 times stiffer), so the moment doubles to within 1 %, not exactly.
     assert two_g.totals.root_bending_moment == pytest.approx(
-        2 * one_g.totals.root_bending_moment, rel=0.05
+        2 * one_g.totals.root_bending_moment, rel=0.01
     )
 
 

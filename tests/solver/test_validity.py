@@ -123,7 +123,7 @@ def test_the_study_wings_findings_are_the_limits_computed_by_hand(velocity, code
     assert_as_by_hand(eq)
 
 
-def test_the_study_wing_at_20_ms():
+def test_the_study_wing_at_20_mps_stalls_bends_twists_and_nears_divergence():
     eq = _study(20.0)
     found = {f.measure: f for f in eq.validity}
     # Section lift coefficients reach 1.70 near the tip, past the thin airfoil's 1.2 on the

@@ -33,9 +33,17 @@ def test_a_read_answers_only_after_the_writes_before_it_are_committed(tmp_path: 
         jobs.write(store.insert_item, "job", 0, 1, True, '{"index": 0}')
         answer = asyncio.ensure_future(jobs.read(store.item_lines_by_answer, "job", 0, 10))
         await asyncio.sleep(0)  # let the read queue itself
-        jobs.write(lambda connection: blocker.wait(WAIT))
+        reached = threading.Event()
+
+        def blocking_write(connection: object) -> None:
+            reached.set()
+            blocker.wait(WAIT)
+
+        jobs.write(blocking_write)
         busy.set()
-        await asyncio.sleep(0.2)  # the batch runs up to the blocking write
+        # The batch has run up to the blocking write: the read is behind it, uncommitted.
+        assert await asyncio.to_thread(reached.wait, WAIT)
+        await asyncio.sleep(0)  # an answer already sent would be delivered by now
         assert not answer.done(), "a read answered before its batch was committed"
         assert _items_on_disk(tmp_path / "jobs.sqlite") == []
         blocker.set()

@@ -1,12 +1,8 @@
-"""The service's pieces without a server: the result cache, error paths, packaging."""
+"""app.cache: the result cache, a least-recently-used map bounded in bytes."""
 
 from __future__ import annotations
 
-import pytest
-
 from app.cache import ResultCache, estimated_bytes
-from app.problems import validation_errors
-from tests import study
 
 
 def _payload(n: int) -> dict[str, object]:
@@ -41,31 +37,3 @@ def test_the_byte_estimate_grows_with_the_content() -> None:
     """About 32 bytes per float in a list (the float object and its slot)."""
     small, large = estimated_bytes(_payload(100)), estimated_bytes(_payload(1100))
     assert 31_000 < large - small < 33_000
-
-
-@pytest.mark.parametrize(
-    ("loc", "field"),
-    [
-        (("body", "wing", "chord", 3), "wing.chord[3]"),
-        (("body", "wing", "elastic_axis", "@list", 1), "wing.elastic_axis[1]"),
-        (("body", "velocities", "@range", "count"), "velocities.count"),
-        (("body",), "body"),
-    ],
-)
-def test_validation_error_paths(loc: tuple[object, ...], field: str) -> None:
-    errors = validation_errors([{"loc": loc, "msg": "bad", "type": "x"}])
-    assert [(e.field, e.reason) for e in errors] == [(field, "bad")]
-
-
-def test_every_app_package_is_installed() -> None:
-    """pyproject lists packages explicitly: a new subpackage of app/ must be added there, or
-    `pip install .` (the Dockerfile) ships an app that cannot import it."""
-    import tomllib
-
-    pyproject = tomllib.loads((study.ROOT / "pyproject.toml").read_text())
-    listed = set(pyproject["tool"]["setuptools"]["packages"])
-    app_dir = study.ROOT / "app"
-    found = {
-        ".".join(init.parent.relative_to(study.ROOT).parts) for init in app_dir.rglob("__init__.py")
-    }
-    assert found <= listed
