@@ -1,0 +1,44 @@
+"""solver.system: one wing at one alpha as modelled, keyed canonically, sharing what it can."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from solver import SolverOptions
+from solver.system import CoupledSystem
+from tests.study import study_wing
+
+
+def test_equal_wings_and_alphas_have_one_key_whatever_the_sign_of_zero():
+    wing = study_wing(12)
+    assert CoupledSystem(wing, 0.0).key == CoupledSystem(study_wing(12), -0.0).key
+    assert CoupledSystem(wing, 5.0).key != CoupledSystem(wing, 5.0, chordwise=2).key
+    assert CoupledSystem(wing, 5.0).key != CoupledSystem(wing, 5.0, deformed_axis=True).key
+    options = SolverOptions(chordwise_panels=3, torque_axis="deformed")
+    assert CoupledSystem.of(wing, 5.0, options).key == (wing.key, 5.0, 3, True)
+
+
+def test_at_another_alpha_only_alpha_changes_and_the_model_is_shared():
+    system = CoupledSystem(study_wing(12), 5.0)
+    other = system.at_alpha(-2.0)
+    assert other.model is system.model and other.layout is system.layout
+    changed = np.flatnonzero(other.parameters != system.parameters)
+    assert changed.tolist() == [system.layout.alpha_index]
+    assert other.parameters[system.layout.alpha_index] == -2.0
+    np.testing.assert_array_equal(other.parameters, CoupledSystem(study_wing(12), -2.0).parameters)
+
+
+def test_the_parameter_vector_is_read_only():
+    parameters = CoupledSystem(study_wing(12), 5.0).parameters
+    with pytest.raises(ValueError, match="read-only"):
+        parameters[0] = 1.0
+
+
+def test_the_residual_alone_is_the_evaluations_residual():
+    system = CoupledSystem(study_wing(12), 5.0)
+    state = np.random.default_rng(5).normal(scale=0.01, size=system.layout.n_unknowns)
+    r0, r1 = system.residual(state)
+    evaluation = system.evaluate(state)
+    np.testing.assert_array_equal(r0, evaluation.r0)
+    np.testing.assert_array_equal(r1, evaluation.r1)
