@@ -27,9 +27,16 @@ def test_a_read_answers_only_after_the_writes_before_it_are_committed(tmp_path: 
     async def scenario() -> None:
         jobs = store.JobStore(tmp_path / "jobs.sqlite")
         await jobs.open()
-        busy, blocker = threading.Event(), threading.Event()
-        # Keep the thread busy so that the next three operations are drained as one batch.
-        jobs.write(lambda connection: busy.wait(WAIT))
+        busy, blocker, holding = threading.Event(), threading.Event(), threading.Event()
+
+        def hold(connection: object) -> None:
+            holding.set()
+            busy.wait(WAIT)
+
+        # Keep the thread busy (and wait until it is) so that the next three operations are
+        # queued behind it and drained as one batch.
+        jobs.write(hold)
+        assert await asyncio.to_thread(holding.wait, WAIT)
         jobs.write(store.insert_item, "job", 0, 1, True, '{"index": 0}')
         answer = asyncio.ensure_future(jobs.read(store.item_lines_by_answer, "job", 0, 10))
         await asyncio.sleep(0)  # let the read queue itself
