@@ -225,11 +225,11 @@ def _flight(
 
 
 def _initial_state(
-    guess: schemas.InitialGuess, n: int, errors: list[FieldError]
+    guess: schemas.InitialGuess, n: int, chordwise: int, errors: list[FieldError]
 ) -> np.ndarray | None:
-    """The solver state of a guessed deformation; circulations start at zero (Newton's first
-    step, on the exact Jacobian, sets them)."""
-    layout = Layout(n)
+    """The solver state of a guessed deformation on N stations with k chordwise panels per
+    strip; circulations start at zero (Newton's first step, on the exact Jacobian, sets them)."""
+    layout = Layout(n, chordwise)
     state = np.zeros(layout.n_unknowns)
     for name, values, part in (
         ("heave", guess.heave, layout.heave),
@@ -251,6 +251,7 @@ def solve_input(request: schemas.SolveRequest, settings: Settings) -> SolveInput
     errors: list[FieldError] = []
     wing = _wing(request.wing, settings, errors)
     flight = _flight(request.flight.velocity, request.flight, errors)
+    options = _options(request.options, wing, settings, errors)
     guess = None
     if request.initial_guess is not None and isinstance(flight, TrimCondition):
         errors.append(
@@ -261,8 +262,9 @@ def solve_input(request: schemas.SolveRequest, settings: Settings) -> SolveInput
             )
         )
     elif request.initial_guess is not None and wing is not None:
-        guess = _initial_state(request.initial_guess, wing.n_stations, errors)
-    options = _options(request.options, wing, settings, errors)
+        guess = _initial_state(
+            request.initial_guess, wing.n_stations, options.chordwise_panels, errors
+        )
     if errors or wing is None or flight is None:
         raise Problem.invalid(errors)
     return SolveInput(wing, flight, options, guess)

@@ -103,7 +103,7 @@ def fold(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
         return Fold(None, None, None, None, 0.0, "no search limit: no speed requested")
     if jig(system).unloaded:
         return _bifurcation(system, density, velocity_limit)
-    found = branch(system, 0.5 * density * velocity_limit**2)
+    found = branch(system, 0.5 * density * velocity_limit * velocity_limit)  # inf, no Overflow
     reached = FlightCondition.velocity_for(found.reached_pressure, density)
     point = found.fold
     if point is None:

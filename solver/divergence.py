@@ -16,8 +16,9 @@ from typing import Literal
 import numpy as np
 
 from solver.branch import default_search_limit, fold, search_velocity_limit
+from solver.errors import ConvergenceError, numerical_failures_as
 from solver.inputs import FlightCondition, SolverOptions, Wing
-from solver.jig import linear_pressure
+from solver.jig import at_rest, linear_pressure
 from solver.results import DivergenceSummary, Equilibrium, FitDivergence, Fold, LinearDivergence
 from solver.system import CoupledSystem
 
@@ -40,7 +41,15 @@ def linear_divergence(
     wing: Wing, density: float, options: SolverOptions | None = None
 ) -> LinearDivergence:
     """The classical eigenvalue q_div of the unloaded jig, and V at `density`."""
-    q_div = linear_divergence_pressure(wing, options)
+    system = CoupledSystem.of(wing, 0.0, options or SolverOptions())
+    try:
+        with numerical_failures_as(0.0):
+            rest = at_rest(system)
+            if not np.all(np.isfinite(rest.evaluation.jacobian1)):
+                raise FloatingPointError("the jig's loads are not finite numbers")
+            q_div = linear_pressure(system)
+    except ConvergenceError as error:
+        return LinearDivergence(None, None, f"it could not be computed: {error.reason}")
     if q_div is None:
         return LinearDivergence(
             None,
@@ -133,9 +142,14 @@ def find_fold(
     `solver.branch.default_search_limit`); speeds are at `density` [kg/m^3].
     """
     system = CoupledSystem.of(wing, alpha, options or SolverOptions())
-    if velocity_limit is None:
-        velocity_limit = default_search_limit(system, density)
-    return fold(system, density, velocity_limit)
+    try:
+        with numerical_failures_as(velocity_limit or 0.0):
+            if velocity_limit is None:
+                velocity_limit = default_search_limit(system, density)
+            return fold(system, density, velocity_limit)
+    except ConvergenceError as error:
+        reason = f"the branch could not be traced: {error.reason}"
+        return Fold(None, None, None, None, 0.0, reason)
 
 
 def divergence_summary(
@@ -153,9 +167,14 @@ def divergence_summary(
     if velocity_limit is None:
         fastest = max((e.flight.velocity for e in equilibria), default=0.0)
         system = CoupledSystem.of(wing, alpha, options)
-        velocity_limit = max(
-            search_velocity_limit(system, density, fastest), default_search_limit(system, density)
-        )
+        try:
+            with numerical_failures_as(fastest):
+                velocity_limit = max(
+                    search_velocity_limit(system, density, fastest),
+                    default_search_limit(system, density),
+                )
+        except ConvergenceError:
+            velocity_limit = None  # find_fold says why the branch cannot be traced
     return DivergenceSummary(
         linear=linear_divergence(wing, density, options),
         fit=fit_divergence(equilibria),

@@ -3,7 +3,19 @@ equilibrium raises a `SolverError`."""
 
 from __future__ import annotations
 
-__all__ = ["ConvergenceError", "InfeasibleDesign", "InvalidInput", "NoEquilibrium", "SolverError"]
+import contextlib
+from collections.abc import Iterator
+
+import numpy as np
+
+__all__ = [
+    "ConvergenceError",
+    "InfeasibleDesign",
+    "InvalidInput",
+    "NoEquilibrium",
+    "SolverError",
+    "numerical_failures_as",
+]
 
 
 class InvalidInput(ValueError):
@@ -88,3 +100,17 @@ class InfeasibleDesign(SolverError):
         self.constraint = constraint
         self.detail = detail
         super().__init__(f"no feasible optimum: {constraint}: {detail}")
+
+
+@contextlib.contextmanager
+def numerical_failures_as(velocity: float) -> Iterator[None]:
+    """Linear algebra that breaks down on a degenerate wing (a singular rigid-wing system, an
+    eigenvalue solve that does not converge, loads that are not finite) ends the work with a
+    typed ConvergenceError at `velocity` [m/s]: the wing is valid input, the numbers could not
+    be computed."""
+    try:
+        yield
+    except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError) as error:
+        raise ConvergenceError(
+            velocity, 0, float("nan"), f"the linear algebra broke down ({error})"
+        ) from error

@@ -41,7 +41,13 @@ import numpy as np
 import scipy.interpolate
 import scipy.linalg
 
-from solver.errors import ConvergenceError, InfeasibleDesign, InvalidInput, SolverError
+from solver.errors import (
+    ConvergenceError,
+    InfeasibleDesign,
+    InvalidInput,
+    SolverError,
+    numerical_failures_as,
+)
 from solver.geometry import DEG
 from solver.inputs import ISA_SEA_LEVEL_DENSITY, FlightCondition, SolverOptions, Wing, _is_number
 from solver.newton import newton
@@ -53,7 +59,7 @@ from solver.results import (
     OptimizerInfo,
     RigidOptimum,
 )
-from solver.solve import numerical_failures_as, solve
+from solver.solve import solve
 from solver.spar import SparDesign, TubeSpar
 from solver.system import CoupledSystem
 
@@ -626,8 +632,16 @@ def _run_ipopt(
         tube = space.spar
         assert tube is not None
         low, high = problem.wall_thickness_bounds
+        radius = tube.outer_diameter / 2
+        if np.any(radius < low):
+            thin = int(np.argmin(radius))
+            raise InfeasibleDesign(
+                "wall_thickness",
+                f"the thinnest wall allowed, {low:g} m, is thicker than the tube's radius at "
+                f"station {thin} ({radius[thin]:.3g} m): no tube has such a wall",
+            )
         lower_v[space.n_twist :] = low
-        upper_v[space.n_twist :] = np.minimum(high, tube.outer_diameter / 2)
+        upper_v[space.n_twist :] = np.minimum(high, radius)
     lbg, ubg = constraints.bounds()
     scale = constraints.variable_scale
     result = ipopt(x0=start / scale, lbx=lower_v / scale, ubx=upper_v / scale, lbg=lbg, ubg=ubg)

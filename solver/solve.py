@@ -16,17 +16,15 @@ it is then returned with `stability.branch == "other"`.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import time
-from collections.abc import Iterator
 
 import numpy as np
 
 from solver.branch import fold, pressure_scale, search_velocity_limit
 from solver.continuation import scaled_norm
 from solver.equilibrium import judge
-from solver.errors import ConvergenceError, SolverError
+from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import jig
 from solver.newton import newton
@@ -35,7 +33,7 @@ from solver.recovery import settle
 from solver.results import Equilibrium
 from solver.system import CoupledSystem
 
-__all__ = ["SAME_EQUILIBRIUM", "numerical_failures_as", "solve"]
+__all__ = ["SAME_EQUILIBRIUM", "solve"]
 
 # Two converged states closer than this (scaled coordinates, `solver.continuation`) are the same
 # equilibrium: the residual tolerance times the conditioning is far below it, and distinct
@@ -60,12 +58,13 @@ def solve(
     hint: an earlier answer for the same wing and alpha; it may only save time. Ignored unless it
         lies on the jig's branch and is stable.
     Raises `NoEquilibrium` beyond the fold of the branch (or where its equilibrium is unstable),
-    `ConvergenceError` when no answer could be reached.
+    `ConvergenceError` when no answer could be reached, `InvalidInput` for a guess that is not a
+    finite state of this wing's mesh, or a guess and a hint together.
     """
     started = time.perf_counter()
     options = options or SolverOptions()
     if hint is not None and initial_guess is not None:
-        raise ValueError("give an initial_guess or a hint, not both")
+        raise InvalidInput("initial_guess", "give an initial_guess or a hint, not both")
     system = CoupledSystem.of(wing, flight.alpha, options)
     with numerical_failures_as(flight.velocity):
         if initial_guess is not None:
@@ -76,19 +75,6 @@ def solve(
             limit = search_velocity_limit(system, flight.density, flight.velocity)
             equilibrium = dataclasses.replace(equilibrium, fold=fold(system, flight.density, limit))
     return equilibrium
-
-
-@contextlib.contextmanager
-def numerical_failures_as(velocity: float) -> Iterator[None]:
-    """Linear algebra that breaks down on a degenerate wing (a singular rigid-wing system, an
-    eigenvalue solve that does not converge) ends the solve with a typed ConvergenceError: the
-    wing is valid input, the numbers could not be computed."""
-    try:
-        yield
-    except (np.linalg.LinAlgError, FloatingPointError, ZeroDivisionError) as error:
-        raise ConvergenceError(
-            velocity, 0, float("nan"), f"the linear algebra broke down ({error})"
-        ) from error
 
 
 def _usable(system: CoupledSystem, hint: Equilibrium | None) -> Equilibrium | None:
@@ -158,7 +144,7 @@ def _from_initial_guess(
     n = system.layout.n_unknowns
     guess = np.asarray(initial_guess, dtype=float)
     if guess.shape != (n,) or not np.all(np.isfinite(guess)):
-        raise ValueError(f"initial_guess must be a finite state of shape ({n},)")
+        raise InvalidInput("initial_guess", f"must be a finite state of shape ({n},)")
     q = flight.dynamic_pressure
     result = newton(
         system.evaluate,

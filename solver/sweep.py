@@ -8,7 +8,7 @@ from collections.abc import Sequence
 
 from solver.branch import fold, search_velocity_limit
 from solver.divergence import fit_divergence, linear_divergence
-from solver.errors import ConvergenceError, NoEquilibrium, SolverError
+from solver.errors import ConvergenceError, NoEquilibrium, SolverError, numerical_failures_as
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import jig
 from solver.recovery import from_branch
@@ -19,7 +19,7 @@ from solver.results import (
     SweepPoint,
     SweepResult,
 )
-from solver.solve import numerical_failures_as, solve
+from solver.solve import solve
 from solver.system import CoupledSystem
 from solver.validity import onsets
 

@@ -40,7 +40,7 @@ import numpy as np
 from solver.branch import pressure_scale
 from solver.divergence import fit_divergence, linear_divergence
 from solver.equilibrium import judge, stability_of
-from solver.errors import ConvergenceError, NoEquilibrium, SolverError
+from solver.errors import ConvergenceError, NoEquilibrium, SolverError, numerical_failures_as
 from solver.evaluation import Evaluation
 from solver.geometry import DEG
 from solver.inputs import FlightCondition, SolverOptions, TrimCondition, Wing
@@ -55,7 +55,6 @@ from solver.results import (
     SweepPoint,
     SweepResult,
 )
-from solver.solve import numerical_failures_as
 from solver.system import CoupledSystem
 from solver.validity import onsets
 
@@ -334,7 +333,12 @@ def trimmed_divergence_limit(
     options = options or SolverOptions()
     base = CoupledSystem.of(wing, 0.0, options)
     kind: Literal["trimmed_stability_limit"] = "trimmed_stability_limit"
-    q_linear = linear_pressure(base)
+    try:
+        with numerical_failures_as(0.0):
+            q_linear = linear_pressure(base)
+    except ConvergenceError as error:
+        reason = f"the linear divergence could not be computed: {error.reason}"
+        return Fold(None, None, None, None, 0.0, reason, kind=kind)
     if q_linear is None:
         return Fold(None, None, None, None, 0.0, "the wing cannot diverge", kind=kind)
     evaluations = 0
@@ -342,9 +346,10 @@ def trimmed_divergence_limit(
     def gap(q: float) -> tuple[float, _TrimmedPoint]:
         nonlocal evaluations
         velocity = FlightCondition.velocity_for(q, density)
-        point = _trimmed_point(wing, TrimCondition(velocity, lift, density), options)
+        with numerical_failures_as(velocity):
+            point = _trimmed_point(wing, TrimCondition(velocity, lift, density), options)
+            local = point.local_divergence_pressure()
         evaluations += point.path.iterations
-        local = point.local_divergence_pressure()
         return (math.inf if local is None else local) - q, point
 
     try:

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from pydantic import ValidationError
 
@@ -10,6 +11,7 @@ from app import schemas
 from app.inputs import solve_input, sweep_input
 from app.problems import Problem
 from app.settings import Settings
+from solver import Layout
 from tests import study
 
 
@@ -89,3 +91,15 @@ def test_stations_are_refused_for_what_is_wrong_with_them(y: list[float], reason
         solve_input(schemas.SolveRequest.model_validate(body), Settings())
     (error,) = raised.value.extensions["errors"]
     assert error["field"] == "wing.y" and reason in error["reason"]
+
+
+@pytest.mark.parametrize("k", [1, 2, 4])
+def test_a_guessed_deformation_is_a_state_of_the_lattice_the_options_ask_for(k: int) -> None:
+    body = study.solve_request(10.0, options={"chordwise_panels": k})
+    body["initial_guess"] = {"heave": [0.001 * i for i in range(30)], "twist": [0.5] * 30}
+    inputs = solve_input(schemas.SolveRequest.model_validate(body), Settings())
+    layout = Layout(30, k)
+    assert inputs.initial_guess is not None and inputs.initial_guess.shape == (layout.n_unknowns,)
+    assert inputs.initial_guess[layout.heave][-1] == pytest.approx(0.029)
+    assert np.all(inputs.initial_guess[layout.twist] == 0.5)
+    assert np.all(inputs.initial_guess[layout.circulation] == 0.0)

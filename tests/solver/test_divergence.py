@@ -278,3 +278,24 @@ def test_without_a_limit_a_wing_that_cannot_diverge_is_searched_past_its_pressur
     assert fold.searched_to_velocity >= 1.25 * scale_speed * (1 - 1e-12)
     summary = divergence_summary(wing, 5.0, RHO)
     assert summary.fold.searched_to_velocity == fold.searched_to_velocity
+
+
+def test_a_lattice_folded_over_itself_gets_reasons_not_exceptions():
+    """Found by fuzzing: a 1 m chord on a 1 cm semispan with 10 deg of tip twist and a strongly
+    cambered section folds the lattice's aft panels over their neighbours, so the jig's loads
+    are not numbers. Every divergence estimate says it could not be computed."""
+    wing = Wing.create(
+        np.linspace(0, 0.01, 4), 1.0, 0.25, 1.0, 1.0, jig_twist=[0, 0, 0, 10], airfoil="naca5935"
+    )
+    options = SolverOptions(chordwise_panels=2)
+    linear = linear_divergence(wing, RHO, options)
+    assert linear.dynamic_pressure is None and "could not be computed" in linear.reason
+    fold = find_fold(wing, 0.0, RHO, options=options)
+    assert fold.velocity is None and "could not be traced" in fold.reason
+    summary = divergence_summary(wing, 0.0, RHO, options=options)
+    assert summary.fold.reason == fold.reason and summary.linear == linear
+
+
+def test_an_enormous_search_limit_is_searched_not_overflowed():
+    fold = find_fold(study_wing(12), 5.0, RHO, 1e200)
+    assert fold.velocity is not None and fold.velocity < 30.0

@@ -215,3 +215,16 @@ def test_sizing_a_spar_the_wing_does_not_have_is_invalid_input():
     with pytest.raises(solver.InvalidInput) as raised:
         solver.optimize(study_wing(), problem)
     assert raised.value.field == "size_spar"
+
+
+def test_a_wall_thicker_than_the_tube_can_hold_is_an_infeasible_design():
+    """Found by fuzzing: IPOPT was handed a lower bound above the upper one (a RuntimeError)."""
+    thin_tube = solver.SparDesign(1e-3, 1e-4, CARBON)  # 1 mm rod: radius 0.5 mm
+    wing = solver.Wing.create(np.linspace(0.0, 1.0, 8), 0.1, 0.4, spar=thin_tube)
+    problem = solver.DesignProblem(
+        lift=1.0, velocity=10.0, size_spar=True, wall_thickness_bounds=(1e-3, 0.05)
+    )
+    with pytest.raises(solver.InfeasibleDesign) as raised:
+        solver.optimize(wing, problem)
+    assert raised.value.constraint == "wall_thickness"
+    assert "thicker than the tube's radius" in str(raised.value)

@@ -205,8 +205,9 @@ def test_a_hint_of_another_wing_or_off_the_branch_is_ignored():
 def test_a_hint_and_an_initial_guess_are_exclusive():
     wing = study_wing()
     e = solve(wing, flight(10.0))
-    with pytest.raises(ValueError, match="not both"):
+    with pytest.raises(solver.InvalidInput, match="not both") as raised:
         solve(wing, flight(11.0), e.state, hint=e)
+    assert raised.value.field == "initial_guess"
 
 
 # --- A caller's initial guess ---------------------------------------------------------------------
@@ -265,9 +266,10 @@ def test_a_callers_guess_can_find_the_bistable_wings_other_stable_equilibrium():
         pytest.param(np.full(4 * 30 - 1, np.nan), id="not-finite"),
     ],
 )
-def test_a_malformed_initial_guess_is_rejected(guess: np.ndarray):
-    with pytest.raises(ValueError):
+def test_a_malformed_initial_guess_is_invalid_input(guess: np.ndarray):
+    with pytest.raises(solver.InvalidInput, match=r"shape \(119,\)") as raised:
         solve(study_wing(), flight(10.0), initial_guess=guess)
+    assert raised.value.field == "initial_guess"
 
 
 # --- Typed failures -----------------------------------------------------------------------------
