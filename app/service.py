@@ -19,7 +19,7 @@ from app.cache import ResultCache
 from app.inputs import optimize_input, solve_input, sweep_input
 from app.metrics import Metrics
 from app.pool import NotReady, Overloaded, SolveTimeout, WorkerLost, WorkerPool
-from app.problems import Problem
+from app.problems import FieldError, Problem
 from app.schemas import OptimizeRequest, SolveRequest, SweepRequest
 from app.settings import Settings
 
@@ -30,6 +30,8 @@ Payload = dict[str, Any]
 
 
 def _failure_problem(failure: worker.Failure) -> Problem:
+    if failure.kind == "invalid_input":
+        return Problem.invalid([FieldError(failure.field or "body", failure.message)])
     if failure.kind == "infeasible_design":
         return Problem(
             "infeasible-design", failure.message, extensions={"constraint": failure.constraint}
@@ -154,6 +156,10 @@ class Service:
             inputs.lift,
         )
         outcome = await self._run(worker.run_sweep, job, self.settings.sweep_timeout, "sweep")
+        if outcome.failure is not None:
+            self.metrics.solves.labels("sweep", outcome.failure.kind).inc()
+            raise _failure_problem(outcome.failure)
+        assert outcome.payload is not None
         self.metrics.solves.labels("sweep", "completed").inc()
         self.results.put(key, outcome.payload)
         return outcome.payload

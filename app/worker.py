@@ -22,6 +22,7 @@ from solver import (
     DesignProblem,
     FlightCondition,
     InfeasibleDesign,
+    InvalidInput,
     NoEquilibrium,
     SolverError,
     SolverOptions,
@@ -83,9 +84,11 @@ class OptimizeJob:
 
 @dataclass(frozen=True)
 class Failure:
-    """A solve that ended without an equilibrium, as data (solver exceptions do not pickle)."""
+    """A solve that ended without an equilibrium, as data (solver exceptions do not pickle).
+    invalid_input: the solver refused an input the service's validation let through (a defect
+    of that validation, still answered as the input's 422)."""
 
-    kind: Literal["no_equilibrium", "not_converged", "infeasible_design"]
+    kind: Literal["no_equilibrium", "not_converged", "infeasible_design", "invalid_input"]
     message: str
     velocity: float
     fold_velocity: float | None = None
@@ -93,6 +96,7 @@ class Failure:
     residual_norm: float | None = None
     reason: str | None = None
     constraint: str | None = None  # infeasible_design: which one
+    field: str | None = None  # invalid_input: which input
 
 
 @dataclass(frozen=True)
@@ -103,7 +107,8 @@ class SolveOutcome:
 
 @dataclass(frozen=True)
 class SweepOutcome:
-    payload: Payload  # a SweepResponse as a dict
+    payload: Payload | None  # a SweepResponse as a dict
+    failure: Failure | None = None  # only invalid_input: a sweep answers failures per point
 
 
 @dataclass(frozen=True)
@@ -138,7 +143,9 @@ def _finite_or_none(value: float | None) -> float | None:
     return None if value is None or not math.isfinite(value) else float(value)
 
 
-def _failure(error: SolverError, velocity: float) -> Failure:
+def _failure(error: SolverError | InvalidInput, velocity: float) -> Failure:
+    if isinstance(error, InvalidInput):
+        return Failure("invalid_input", error.reason, velocity, field=error.field)
     if isinstance(error, InfeasibleDesign):
         return Failure("infeasible_design", str(error), velocity, constraint=error.constraint)
     if isinstance(error, NoEquilibrium):
@@ -162,17 +169,21 @@ def run_solve(job: SolveJob) -> SolveOutcome:
             equilibrium = trim(job.wing, job.flight, job.options)
         else:
             equilibrium = solve(job.wing, job.flight, job.initial_guess, job.options)
-    except SolverError as error:
+    except (SolverError, InvalidInput) as error:
         return SolveOutcome(None, _failure(error, job.flight.velocity))
     return SolveOutcome(payload(equilibrium), None)
 
 
 def run_sweep(job: SweepJob) -> SweepOutcome:
-    if job.lift is not None:
-        result = trim_sweep(job.wing, list(job.velocities), job.lift, job.density, job.options)
-    else:
-        assert job.alpha is not None
-        result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
+    """Every point's equilibrium or its failure (in the payload), or the input refused."""
+    try:
+        if job.lift is not None:
+            result = trim_sweep(job.wing, list(job.velocities), job.lift, job.density, job.options)
+        else:
+            assert job.alpha is not None
+            result = sweep(job.wing, list(job.velocities), job.alpha, job.density, job.options)
+    except InvalidInput as error:
+        return SweepOutcome(None, _failure(error, max(job.velocities, default=0.0)))
     return SweepOutcome(payload(result))
 
 
@@ -180,6 +191,6 @@ def run_optimize(job: OptimizeJob) -> SolveOutcome:
     """One optimal design (an OptimizeResponse as a dict), or the reason there is none."""
     try:
         design = optimize(job.wing, job.problem, job.options)
-    except SolverError as error:
+    except (SolverError, InvalidInput) as error:
         return SolveOutcome(None, _failure(error, job.problem.velocity))
     return SolveOutcome(payload(design), None)
