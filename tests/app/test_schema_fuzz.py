@@ -58,6 +58,17 @@ calls: Counter[str] = Counter()
 statuses: Counter[str] = Counter()
 
 
+def no_server_error_but_past_a_time_budget(ctx: Any, response: Any, case: Any) -> Any:
+    """No 5xx, except the documented answer past a synchronous time budget: 504
+    /problems/solve-timeout. A valid request can need more than the budget: seed 0 generated a
+    trimmed sweep of 9 speeds over a 145-station wing whose trim fails after 80 path steps at
+    each speed, 19 s apiece on the virtual machine that serves a never-seen mesh while its
+    library compiles. Every other 5xx is a defect."""
+    if response.status_code == 504 and response.json().get("type") == "/problems/solve-timeout":
+        return None
+    return not_a_server_error(ctx, response, case)
+
+
 def problem_json_for_every_4xx(ctx: Any, response: Any, case: Any) -> None:
     """A 4xx answer is an RFC 9457 problem whose `status` matches the response."""
     if not 400 <= response.status_code < 500:
@@ -76,7 +87,7 @@ def problem_json_for_every_4xx(ctx: Any, response: Any, case: Any) -> None:
 
 
 CHECKS = [
-    not_a_server_error,
+    no_server_error_but_past_a_time_budget,
     status_code_conformance,
     content_type_conformance,
     response_schema_conformance,
