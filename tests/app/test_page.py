@@ -22,6 +22,7 @@ import httpx
 import pytest
 from playwright.sync_api import Browser, ConsoleMessage, Page, Request, sync_playwright
 
+from tests import study
 from tests.app.conftest import Server
 
 CHROMIUM = Path("/usr/bin/chromium")
@@ -752,3 +753,62 @@ def test_a_trimmed_flight_without_equilibrium_says_why(visit: Callable[..., Visi
     assert "needs alpha = 31.2" in problem and "beyond +-30 deg" in problem
     assert page.get_attribute("#problem", "data-type") == "/problems/no-equilibrium"
     assert tab.errors_but(422) == []
+
+
+def test_loaded_json_keeps_what_the_editor_cannot_show_and_its_options(
+    visit: Callable[..., Visit],
+) -> None:
+    """A camber table and solver options loaded from JSON are sent as given (a text field once
+    showed the table as "[object Object]", and every option but the safety factor was dropped);
+    a later body without them clears them."""
+    camber = {"x": [0.0, 0.5, 1.0], "camber": [0.0, 0.04, 0.0]}
+    body = study.solve_request(12.0, options={"chordwise_panels": 4, "torque_axis": "deformed"})
+    body["wing"]["airfoil"] = camber
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#json-io summary")
+    page.fill("#json-text", json.dumps(body))
+    page.click("#json-load")
+    assert page.input_value("#f-airfoil") == ""
+    note = page.inner_text("#planform-note")
+    assert "airfoil" in note and "options.chordwise_panels" in note
+    sent = tab.solved()
+    assert sent["wing"]["airfoil"] == camber
+    assert sent["options"] == {"chordwise_panels": 4, "torque_axis": "deformed"}
+    assert tab.errors_but(0) == []
+    page.fill("#json-text", json.dumps(study.solve_request(12.0)))
+    page.click("#json-load")
+    again = tab.solved()
+    assert "airfoil" not in again["wing"] and "options" not in again
+
+
+def test_a_sweep_polled_into_a_rate_limit_waits_and_draws_its_answer(
+    visit: Callable[..., Visit],
+) -> None:
+    """Two of the job's GETs are refused with 429 (by the test, page.route): the page waits for
+    their Retry-After and asks again; it once reported the sweep failed while the job ran on."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    refused: list[str] = []
+
+    def rate_limited(route: Any) -> None:
+        if route.request.method == "GET" and len(refused) < 2:
+            refused.append(route.request.url)
+            problem = {"type": "/problems/rate-limited", "title": "Too many", "status": 429}
+            route.fulfill(
+                status=429,
+                headers={"retry-after": "1", "content-type": "application/problem+json"},
+                body=json.dumps(problem),
+            )
+            return
+        route.continue_()
+
+    page.route("**/jobs/*", rate_limited)
+    page.fill("#f-sweep_count", "9")
+    tab.swept()
+    assert len(refused) == 2
+    assert len(tab.figure("14.4")["series"]["amplification"]["x"]) == 8
+    assert "Sweep failed" not in page.inner_text("#status-text")
+    assert tab.errors_but(429) == []

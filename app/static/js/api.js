@@ -122,10 +122,31 @@ export async function runSweep(request, { signal, onProgress } = {}) {
       const doing = job.status === "queued" ? "Queued" : "Solving";
       onProgress?.({ done, total, message: `${doing}: ${done} of ${total} airspeeds` });
       await pause(polls ? POLL_MS : POLL_MS / 4, signal); // a short sweep is often done at once
-      job = await call("GET", url, { signal });
+      job = await jobState(url, signal);
     }
   } finally {
     signal?.removeEventListener("abort", cancel);
+  }
+}
+
+/** Refusals of a job's GET (429, 503) waited out in a row before the page gives up. */
+const MAX_REFUSALS = 60;
+
+/**
+ * GET a running job's state. A rate limit (429) or an overloaded service (503) is waited out for
+ * its Retry-After (1 s without one) and asked again: the job runs on regardless, and giving up
+ * would lose its answer.
+ */
+async function jobState(url, signal) {
+  for (let refusals = 0; ; refusals++) {
+    try {
+      return await call("GET", url, { signal });
+    } catch (error) {
+      const refused = error instanceof ProblemError && (error.status === 429 || error.status === 503);
+      if (!refused || refusals >= MAX_REFUSALS) throw error;
+      const seconds = Number(error.problem?.retryAfter);
+      await pause(1000 * (Number.isFinite(seconds) && seconds > 0 ? seconds : 1), signal);
+    }
   }
 }
 

@@ -27,6 +27,7 @@ const state = {
   controls: {}, // key -> {field, control}
   extra: [], // optional fields this API version has: {field, control}
   passThrough: {}, // wing keys loaded from JSON that the editor does not know
+  options: {}, // solver options loaded from JSON (sent as given; the page sets only safety_factor)
   solve: null, // {request, response, rigid, rigidNote}
   sweep: null, // {request, response}
   runs: { solve: 0, sweep: 0, failed: 0 },
@@ -130,8 +131,10 @@ function flight({ withVelocity }) {
   return result.flight;
 }
 
-/** Solver options the page sets: the safety factor of a spar's failure margin. */
+/** Solver options: those loaded from JSON, as given, and the one the page sets (the safety
+ * factor of a spar's failure margin). */
 function withOptions(request) {
+  if (Object.keys(state.options).length) request.options = { ...state.options };
   if (state.stiffness === "spar") setPath(request, "options.safety_factor", value("safety_factor"));
   return request;
 }
@@ -798,11 +801,24 @@ function loadJSON(text) {
     }
     setControl("safety_factor", body.options?.safety_factor);
   }
+  // An optional field shows one number or string: a value it cannot (a camber table, a list per
+  // station) is kept as given instead, and a field the body leaves out goes back to empty.
+  const shown = (v) => typeof v === "string" || typeof v === "number";
+  for (const { field } of state.extra) {
+    const key = field.path?.replace("wing.", "");
+    if (field.kind !== "column" && key in w && !shown(w[key])) known.delete(key);
+  }
   state.passThrough = Object.fromEntries(Object.entries(w).filter(([k]) => !known.has(k)));
   for (const { field, control } of state.extra) {
     const v = field.path?.split(".").reduce((node, part) => node?.[part], { wing: w, flight: body.flight });
-    if (v !== undefined) control.value = String(v);
+    if (field.kind === "column") {
+      if (v !== undefined) control.value = String(v);
+    } else {
+      control.value = shown(v) ? String(v) : "";
+    }
   }
+  const { safety_factor: _, ...options } = body.options ?? {};
+  state.options = options;
   setMode("table");
   table.fill(w);
   updateCount();
@@ -830,7 +846,7 @@ function loadJSON(text) {
     setControl("sweep_stop", v.stop);
     setControl("sweep_count", v.count);
   }
-  const extra = Object.keys(state.passThrough);
+  const extra = [...Object.keys(state.passThrough), ...Object.keys(state.options).map((k) => `options.${k}`)];
   $("planform-note").textContent =
     `Loaded a wing of ${table.rows} stations into the station table.` +
     (extra.length ? ` Kept as given (the editor has no field for them): ${extra.join(", ")}.` : "");
