@@ -89,6 +89,13 @@ class Visit:
     def total(self, key: str) -> str:
         return self.page.inner_text(f'#totals [data-total="{key}"] dd')
 
+    def load_json(self, text: str) -> None:
+        """Paste `text` into the JSON box (opened if it is closed) and load it."""
+        if not self.page.is_visible("#json-text"):
+            self.page.click("#json-io summary")
+        self.page.fill("#json-text", text)
+        self.page.click("#json-load")
+
     def solved(self, press: str | None = None) -> dict[str, Any]:
         """Solve (Enter in the field `press`, else the Solve button) and wait for the answer;
         returns the /solve request body the page sent."""
@@ -441,17 +448,14 @@ def test_pasted_json_loads_and_solves(visit: Callable[..., Visit], server: Serve
     tab = visit("/")
     tab.ready()
     page = tab.page
-    page.click("#json-io summary")
-    page.fill("#json-text", json.dumps(request))
-    page.click("#json-load")
+    tab.load_json(json.dumps(request))
     assert page.is_checked("#mode-table")
     assert page.input_value("#f-velocity") == "12"
     before = tab.runs()
     page.click("#solve-button")
     tab.wait_runs("solve", before)
     assert tab.total("tip_twist") == "+2.67 deg"  # the study's 12 m/s point
-    page.fill("#json-text", "{not json")
-    page.click("#json-load")
+    tab.load_json("{not json")
     assert "Not valid JSON" in page.inner_text("#json-error")
 
 
@@ -767,9 +771,7 @@ def test_loaded_json_keeps_what_the_editor_cannot_show_and_its_options(
     tab = visit("/")
     tab.ready()
     page = tab.page
-    page.click("#json-io summary")
-    page.fill("#json-text", json.dumps(body))
-    page.click("#json-load")
+    tab.load_json(json.dumps(body))
     assert page.input_value("#f-airfoil") == ""
     note = page.inner_text("#planform-note")
     assert "airfoil" in note and "options.chordwise_panels" in note
@@ -777,8 +779,7 @@ def test_loaded_json_keeps_what_the_editor_cannot_show_and_its_options(
     assert sent["wing"]["airfoil"] == camber
     assert sent["options"] == {"chordwise_panels": 4, "torque_axis": "deformed"}
     assert tab.errors_but(0) == []
-    page.fill("#json-text", json.dumps(study.solve_request(12.0)))
-    page.click("#json-load")
+    tab.load_json(json.dumps(study.solve_request(12.0)))
     again = tab.solved()
     assert "airfoil" not in again["wing"] and "options" not in again
 
