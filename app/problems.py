@@ -269,6 +269,11 @@ def _allowed_methods(request: Request) -> str:
     return ", ".join(allowed)
 
 
+def _internal_error(error: Exception, path: str) -> JSONResponse:
+    """The answer to a defect: its exception's type, never its message or traceback."""
+    return problem_response(Problem("internal-error", f"unexpected {type(error).__name__}"), path)
+
+
 class UnexpectedErrors:
     """An exception no handler maps (a bug) becomes the internal-error problem here, inside every
     other middleware (pure ASGI). Starlette's own last resort sits outside them all, so its 500
@@ -297,8 +302,7 @@ class UnexpectedErrors:
             if started:
                 raise  # half an answer is out: only closing the connection can say so
             log.exception("unexpected error answering %s %s", scope["method"], scope["path"])
-            problem = Problem("internal-error", f"unexpected {type(error).__name__}")
-            await problem_response(problem, scope["path"])(scope, receive, send)
+            await _internal_error(error, scope["path"])(scope, receive, send)
 
 
 def install_handlers(app: FastAPI) -> None:
@@ -329,8 +333,7 @@ def install_handlers(app: FastAPI) -> None:
         return problem_response(problem, request.url.path, status=exc.status_code)
 
     async def on_error(request: Request, exc: Exception) -> JSONResponse:
-        problem = Problem("internal-error", f"unexpected {type(exc).__name__}")
-        return problem_response(problem, request.url.path)
+        return _internal_error(exc, request.url.path)
 
     app.add_exception_handler(Problem, on_problem)
     app.add_exception_handler(RequestValidationError, on_validation)

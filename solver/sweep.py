@@ -6,15 +6,14 @@ from __future__ import annotations
 import time
 from collections.abc import Sequence
 
-from solver.branch import fold, search_velocity_limit
-from solver.divergence import fit_divergence, linear_divergence
-from solver.errors import ConvergenceError, NoEquilibrium, SolverError, numerical_failures_as
+from solver.branch import search_velocity_limit
+from solver.divergence import find_fold, fit_divergence, linear_divergence
+from solver.errors import NoEquilibrium, SolverError, numerical_failures_as
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import jig
 from solver.recovery import from_branch
 from solver.results import (
     DivergenceSummary,
-    Fold,
     SweepInfo,
     SweepPoint,
     SweepResult,
@@ -47,11 +46,7 @@ def sweep(
     system = CoupledSystem.of(wing, alpha, options)
     fastest = max(velocities, default=0.0)
     limit = search_velocity_limit(system, density, fastest)
-    try:
-        with numerical_failures_as(fastest):
-            found = fold(system, density, limit)
-    except ConvergenceError as error:
-        found = Fold(None, None, None, None, 0.0, f"the branch could not be traced: {error.reason}")
+    found = find_fold(wing, alpha, density, limit, options)
     points: list[SweepPoint] = []
     for velocity in velocities:
         flight = FlightCondition(velocity=velocity, alpha=alpha, density=density)
