@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # solver/, bottom first: a module may import only from the layers before its own.
 SOLVER_LAYERS: list[list[str]] = [
     ["errors"],
+    ["fields"],
     ["airfoil", "spar"],
     ["inputs", "layout"],
     ["geometry"],

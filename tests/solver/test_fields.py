@@ -1,0 +1,81 @@
+"""solver.fields: an input's limits, stated once, judge its values and say so in words."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from solver.errors import InvalidInput
+from solver.fields import Limits, Spec, number, stations
+
+CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), per_station=True)
+SWEEP = Spec("deg", "sweep", Limits(gt=-60.0, lt=60.0))
+
+
+@pytest.mark.parametrize(
+    ("limits", "phrase"),
+    [
+        pytest.param(Limits(ge=0.01, le=1000.0), "from 0.01 to 1000", id="closed"),
+        pytest.param(Limits(gt=-60.0, lt=60.0), "above -60 below 60", id="open"),
+        pytest.param(Limits(gt=0.0), "positive", id="positive"),
+        pytest.param(Limits(ge=1.0), "at least 1", id="lower-only"),
+        pytest.param(Limits(le=0.0), "at most 0", id="upper-only"),
+        pytest.param(Limits(), "", id="none"),
+    ],
+)
+def test_a_range_is_said_in_words(limits: Limits, phrase: str):
+    assert limits.phrase() == phrase
+
+
+@pytest.mark.parametrize(
+    ("value", "inside"),
+    [(-60.0, False), (-59.999, True), (0.0, True), (59.999, True), (60.0, False)],
+)
+def test_exclusive_ends_are_outside(value: float, inside: bool):
+    assert bool(SWEEP.limits.contains(np.asarray(value))) is inside
+
+
+def test_a_number_in_range_is_a_float_and_minus_zero_is_zero():
+    value = number("sweep", -0.0, SWEEP)
+    assert value == 0.0 and math.copysign(1.0, value) == 1.0
+
+
+@pytest.mark.parametrize(
+    ("value", "reason"),
+    [
+        pytest.param("10", "must be a number", id="string"),
+        pytest.param(True, "must be a number", id="bool"),
+        pytest.param(math.nan, "must be a finite number", id="nan"),
+        pytest.param(60.0, "must be above -60 below 60 deg", id="at-the-open-end"),
+    ],
+)
+def test_a_bad_number_is_named_with_its_reason(value: object, reason: str):
+    with pytest.raises(InvalidInput) as raised:
+        number("wing.sweep", value, SWEEP)
+    assert raised.value.field == "wing.sweep" and raised.value.reason == reason
+
+
+def test_one_number_is_every_station_and_the_array_is_read_only():
+    array = stations("chord", 0.5, 4, CHORD)
+    assert array.tolist() == [0.5] * 4 and not array.flags.writeable
+
+
+@pytest.mark.parametrize(
+    ("value", "reason"),
+    [
+        pytest.param([1.0, 2.0], "has 2 values but y has 3 stations", id="length"),
+        pytest.param([1.0, math.inf, 1.0], "must contain only finite numbers", id="infinite"),
+        pytest.param(
+            [1.0, 0.0, 1.0],
+            "must be from 0.001 to 100 m at every station (1 mm to 100 m)",
+            id="out-of-range",
+        ),
+        pytest.param(["1", 1.0, 1.0], "must be a number or a list of numbers", id="string-item"),
+    ],
+)
+def test_a_bad_station_array_is_named_with_its_reason(value: object, reason: str):
+    with pytest.raises(InvalidInput) as raised:
+        stations("wing.chord", value, 3, CHORD)
+    assert raised.value.reason == reason
