@@ -266,8 +266,8 @@ def install_access(app: FastAPI, settings: Settings, metrics: Metrics) -> None:
     rate limits (FLEXWING_RATE_LIMIT, FLEXWING_RATE_BURST). Add it inside the metrics."""
     keys = None if settings.api_keys_file is None else KeyRing(settings.api_keys_file)
     buckets = None
-    if settings.rate_limit > 0:
-        buckets = TokenBuckets(settings.rate_limit, settings.rate_burst)
+    if settings.client_rate_limit > 0:
+        buckets = TokenBuckets(settings.client_rate_limit, settings.rate_burst)
     app.state.keys = keys
     app.add_middleware(
         AccessMiddleware, keys=keys, buckets=buckets, metrics=AccessMetrics(metrics.registry)
@@ -333,18 +333,26 @@ def document(schema: dict[str, Any], settings: Settings) -> None:
                 operation["security"] = []
             else:
                 responses.setdefault("401", unauthorized)
-            if settings.rate_limit > 0 and path not in UNLIMITED_PATHS:
+            if settings.client_rate_limit > 0 and path not in UNLIMITED_PATHS:
                 responses.setdefault("429", limited)
     sharing = (
         "Sharing: with API keys on (FLEXWING_API_KEYS_FILE) every operation but healthz and readyz "
         "needs `Authorization: Bearer <key>` (401 /problems/key-missing or /problems/key-invalid "
         "otherwise), and a job is seen only by the key that created it."
     )
-    if settings.rate_limit > 0:
+    if settings.client_rate_limit > 0:
         sharing += (
             f" Each client (its key; its address without keys) may send {settings.rate_burst} "
-            f"requests at once and {settings.rate_limit:g} per second (FLEXWING_RATE_BURST, "
-            "FLEXWING_RATE_LIMIT); beyond that 429 /problems/rate-limited with Retry-After."
+            f"requests at once and {settings.client_rate_limit:g} per second "
+            "(FLEXWING_RATE_BURST, FLEXWING_RATE_LIMIT); beyond that 429 /problems/rate-limited "
+            "with Retry-After."
+        )
+    else:
+        sharing += (
+            " Rate limits: none here (FLEXWING_RATE_LIMIT unset without API keys: one owner). "
+            "With API keys each key may send FLEXWING_RATE_BURST (default 100) requests at once "
+            "and FLEXWING_RATE_LIMIT (default 50) per second; beyond that 429 "
+            "/problems/rate-limited with Retry-After."
         )
     info = schema.setdefault("info", {})
     info["description"] = info.get("description", "").rstrip() + "\n\n" + sharing + "\n"

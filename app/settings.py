@@ -16,13 +16,19 @@ from typing import Literal
 from pydantic import Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["MAX_ARRAY_LENGTH", "MAX_BATCH_ITEMS", "Settings", "default_jobs_db", "get_settings"]
+__all__ = [
+    "KEYED_RATE_LIMIT",
+    "MAX_ARRAY_LENGTH",
+    "MAX_BATCH_ITEMS", "Settings", "default_jobs_db", "get_settings"]
 
 # Hard ceiling on every array in a request, whatever the settings: validation stops at one
 # `too_long` error instead of judging (and listing) every item of a huge array. The configured
 # limits (max_stations, max_sweep_points) apply below it.
 MAX_ARRAY_LENGTH = 1000
 
+
+# [requests/s] the rate limit of one API key when FLEXWING_RATE_LIMIT is unset and keys are on.
+KEYED_RATE_LIMIT = 50.0
 
 # Hard ceiling on the items of one batch job, whatever the settings (FLEXWING_MAX_BATCH_ITEMS
 # applies below it).
@@ -200,12 +206,14 @@ class Settings(BaseSettings):
             "no keys (keep the service on loopback)."
         ),
     )
-    rate_limit: float = Field(
-        default=50.0,
+    rate_limit: float | None = Field(
+        default=None,
         ge=0,
         description=(
             "[requests/s] sustained rate of one client (an API key; a client address without "
-            "keys); beyond it 429 with Retry-After. 0: no rate limit."
+            "keys); beyond it 429 with Retry-After. 0: no rate limit. Unset: 50 per API key "
+            "with keys (a shared service), none without (the embedded deployment has one owner, "
+            "whose design loops and batches must not be throttled)."
         ),
     )
     rate_burst: int = Field(
@@ -220,6 +228,14 @@ class Settings(BaseSettings):
             "'[\"https://wings.example.org\"]'. Empty (the default): no CORS headers at all."
         ),
     )
+
+    @property
+    def client_rate_limit(self) -> float:
+        """[requests/s] the rate limit in force: FLEXWING_RATE_LIMIT, or when unset 50 per key
+        with API keys and none (0) without."""
+        if self.rate_limit is not None:
+            return self.rate_limit
+        return KEYED_RATE_LIMIT if self.api_keys_file is not None else 0.0
 
     @field_validator("cors_origins")
     @classmethod

@@ -94,11 +94,15 @@ class InfeasibleDesign(SolverError):
         constraint: which constraint could not be met ("lift", "von_mises", "tip_heave",
             "stability_margin", "jig_twist", ...) or "optimizer" when IPOPT failed otherwise.
         detail: what was found.
+        violation: [-] how far the last design the optimizer reached breaks `constraint`, in
+            units of the constraint's scale (its limit, or 1 for dimensionless ones); None when
+            no design was judged (no equilibrium there, or the problem cannot be posed).
     """
 
-    def __init__(self, constraint: str, detail: str) -> None:
+    def __init__(self, constraint: str, detail: str, violation: float | None = None) -> None:
         self.constraint = constraint
         self.detail = detail
+        self.violation = violation
         super().__init__(f"no feasible optimum: {constraint}: {detail}")
 
 

@@ -777,6 +777,7 @@ def _infeasible(
         worst,
         f"IPOPT stopped with {info.status} after {info.iterations} iterations"
         + (f"; violated by {excess:.3g} of its scale" if worst != "optimizer" else ""),
+        violation=excess if worst != "optimizer" else None,
     )
 
 

@@ -38,6 +38,7 @@ from typing import Literal
 import numpy as np
 
 from solver.branch import pressure_scale
+from solver.cache import cached
 from solver.divergence import fit_divergence, linear_divergence
 from solver.equilibrium import judge, stability_of
 from solver.errors import ConvergenceError, NoEquilibrium, SolverError, numerical_failures_as
@@ -274,8 +275,11 @@ def trim(wing: Wing, condition: TrimCondition, options: SolverOptions | None = N
     started = time.perf_counter()
     options = options or SolverOptions()
     with numerical_failures_as(condition.velocity):
-        point = _trimmed_point(wing, condition, options)
-        equilibrium = _answer(point, condition, options, started)
+        try:
+            point = _trimmed_point(wing, condition, options)
+            equilibrium = _answer(point, condition, options, started)
+        except NoEquilibrium as error:
+            raise _past_the_limit(wing, condition, options) or error from None
         if options.find_fold:
             limit = trimmed_divergence_limit(wing, condition.lift, condition.density, options)
             equilibrium = dataclasses.replace(equilibrium, fold=limit)
@@ -320,6 +324,27 @@ def _answer(
     return dataclasses.replace(equilibrium, totals=totals)
 
 
+def _past_the_limit(
+    wing: Wing, condition: TrimCondition, options: SolverOptions
+) -> NoEquilibrium | None:
+    """The answer for a trimmed condition beyond the wing's trimmed divergence limit, or None
+    when it lies below the limit (or the wing has none)."""
+    limit = trimmed_divergence_limit(wing, condition.lift, condition.density, options)
+    return _beyond(limit, condition.velocity)
+
+
+def _beyond(limit: Fold, velocity: float) -> NoEquilibrium | None:
+    """`NoEquilibrium` at `velocity` [m/s] if it lies past the trimmed divergence limit."""
+    if limit.velocity is None or not velocity > limit.velocity:
+        return None
+    return NoEquilibrium(
+        velocity,
+        limit.velocity,
+        where=f"past the trimmed divergence limit at {limit.velocity:.6g} m/s: the wing trimmed "
+        "to this lift is statically unstable at fixed alpha beyond it",
+    )
+
+
 def trimmed_divergence_limit(
     wing: Wing, lift: float, density: float, options: SolverOptions | None = None
 ) -> Fold:
@@ -327,10 +352,34 @@ def trimmed_divergence_limit(
     dynamic pressure at which its trimmed equilibrium's own divergence pressure equals q.
 
     Reported as a `Fold` of kind "trimmed_stability_limit": past it the trimmed equilibrium
-    exists but is statically unstable at fixed alpha. Found by secant iterations on
-    q_local(q) - q from the linear divergence pressure, each point a trimmed solve.
+    exists but is statically unstable at fixed alpha (at a fixed lift the twist hardly changes
+    with q, so neither does the trimmed wing's divergence pressure: q passes it once). Found by
+    secant iterations on q_local(q) - q from the linear divergence pressure, each point a
+    trimmed solve; a deterministic function of its arguments, kept in the solver's cache, so a
+    trimmed sweep or solve asked of the same wing again finds it at once.
     """
     options = options or SolverOptions()
+    key = ("trimmed_limit", wing.key, lift + 0.0, density + 0.0, _modelled(options))
+    return cached(key, lambda: _trimmed_divergence_limit(wing, lift, density, options), _size)
+
+
+def _modelled(options: SolverOptions) -> tuple[object, ...]:
+    """What of the options can change the limit (validity limits only change findings)."""
+    return (
+        options.chordwise_panels,
+        options.torque_axis,
+        options.tolerance,
+        options.max_iterations,
+    )
+
+
+def _size(fold: Fold) -> int:
+    return 512  # [bytes] a handful of floats and a reason
+
+
+def _trimmed_divergence_limit(
+    wing: Wing, lift: float, density: float, options: SolverOptions
+) -> Fold:
     base = CoupledSystem.of(wing, 0.0, options)
     kind: Literal["trimmed_stability_limit"] = "trimmed_stability_limit"
     try:
@@ -418,21 +467,31 @@ def trim_sweep(
 ) -> SweepResult:
     """The wing trimmed to `lift` [N] at each airspeed [m/s], answered in the given order.
 
-    Each point is `trim` at its speed (history-free). The divergence summary says what
-    divergence means at a fixed lift: `linear` as for any sweep; `fit` the study's 1/A fit with
-    A the lift effectiveness (for a single torsion mode 1/A = 1 - q/q_div exactly); `fold` the
-    trimmed divergence limit (kind "trimmed_stability_limit"), where each point's
-    `stability.margin` reaches 1.
+    Each point is `trim` at its speed (history-free). The trimmed divergence limit is found
+    first: a speed beyond it is answered with `NoEquilibrium` without a solve, as `trim`
+    answers it (a trimmed path past the limit can take hundreds of steps to give up). The
+    divergence summary says what divergence means at a fixed lift: `linear` as for any sweep;
+    `fit` the study's 1/A fit with A the lift effectiveness (for a single torsion mode
+    1/A = 1 - q/q_div exactly); `fold` the trimmed divergence limit (kind
+    "trimmed_stability_limit"), where each point's `stability.margin` reaches 1.
     """
     started = time.perf_counter()
     options = options or SolverOptions()
+    limit = trimmed_divergence_limit(wing, lift, density, options)
     points: list[SweepPoint] = []
     for velocity in velocities:
+        beyond = _beyond(limit, velocity)
+        if beyond is not None:
+            points.append(SweepPoint.failed(velocity, beyond))
+            continue
         try:
             condition = TrimCondition(velocity, lift, density)
             with numerical_failures_as(velocity):
-                point = _trimmed_point(wing, condition, options)
-                equilibrium = _answer(point, condition, options, time.perf_counter())
+                try:
+                    point = _trimmed_point(wing, condition, options)
+                    equilibrium = _answer(point, condition, options, time.perf_counter())
+                except NoEquilibrium as error:
+                    raise _past_the_limit(wing, condition, options) or error from None
         except SolverError as error:
             points.append(SweepPoint.failed(velocity, error))
             continue
@@ -441,7 +500,7 @@ def trim_sweep(
     divergence = DivergenceSummary(
         linear=linear_divergence(wing, density, options),
         fit=fit_divergence(stable, "lift_effectiveness"),
-        fold=trimmed_divergence_limit(wing, lift, density, options),
+        fold=limit,
     )
     return SweepResult(
         points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)

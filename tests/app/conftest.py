@@ -4,9 +4,9 @@
 disk cache, FLEXWING_CACHE_DIR, if it is not there yet).
 `fault_server`: 2 workers on CasADi's virtual machine (no compilation, a private cache dir), with
 short limits, for the tests that kill workers, overrun budgets and overload the pool.
-Servers run without rate limits (FLEXWING_RATE_LIMIT=0) unless a test sets them: the load, fuzz
-and fault tests measure the service from one address, not the limiter (tests/app/test_security.py
-tests the limiter, with its defaults too).
+Servers run with the defaults, so without API keys they have no rate limit (the load, fuzz and
+fault tests measure the service from one address, not the limiter); tests/app/test_security.py
+tests the limiter, with its defaults under keys too.
 """
 
 from __future__ import annotations
@@ -89,7 +89,7 @@ def _start(
 ) -> Iterator[Server]:
     port = _free_port()
     log = tmp / f"{name}.log"
-    defaults = {"FLEXWING_WORKERS": "2", "FLEXWING_RATE_LIMIT": "0", "PYTHONUNBUFFERED": "1"}
+    defaults = {"FLEXWING_WORKERS": "2", "PYTHONUNBUFFERED": "1"}
     full_env = os.environ | defaults | env
     with open(log, "wb") as out:
         process = subprocess.Popen(

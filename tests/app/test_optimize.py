@@ -34,7 +34,6 @@ def test_the_study_example_is_optimised_like_python(client: httpx.Client):
     assert body["rigid"]["trefftz_span_efficiency"] == pytest.approx(1.0, abs=0.025)
     names = {c["name"]: c for c in body["constraints"]}
     assert names["lift"]["active"] and not names["stability_margin"]["active"]
-    assert body["optimizer"]["status"] in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 
 def test_the_optimal_wing_solved_again_answers_the_same(client: httpx.Client):

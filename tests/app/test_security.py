@@ -24,6 +24,7 @@ import json
 import secrets
 import sqlite3
 import statistics
+from collections import Counter
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -45,7 +46,6 @@ from tests.app.test_operations import generated_client  # noqa: F401 (a fixture)
 
 ORIGIN = "https://wings.example.org"  # the one origin keyed_server lets call it
 HANG_GUARD = 120.0  # [s] only a hang fails on it
-DEFAULTS = Settings.model_fields
 
 
 @dataclass(frozen=True)
@@ -94,8 +94,6 @@ def keyed_server(
     env = _env(
         tmp_path_factory.mktemp("keyed"),
         FLEXWING_API_KEYS_FILE=str(keys.file),
-        FLEXWING_RATE_LIMIT=str(DEFAULTS["rate_limit"].default),  # the conftest switches it off
-        FLEXWING_RATE_BURST=str(DEFAULTS["rate_burst"].default),
         FLEXWING_CORS_ORIGINS=json.dumps([ORIGIN]),
     )
     return make_server("keyed_server", log_level="debug", **env)
@@ -684,3 +682,26 @@ def test_a_generated_client_carries_the_key(
     problem = solve.sync(client=keyless, body=body)
     assert isinstance(problem, ProblemDetails)
     assert problem.type_ == "/problems/key-missing"
+
+
+def test_the_embedded_deployment_never_throttles_its_owner(server: Server) -> None:
+    """The README's command (no keys, no FLEXWING_RATE_LIMIT): a design loop of 500 requests
+    from one client, faster than any default bucket, is answered without a 429."""
+    with server.client() as client:
+        statuses = Counter(client.get("/jobs").status_code for _ in range(500))
+        assert statuses == Counter({200: 500})
+        assert "429" not in client.get("/openapi.json").json()["paths"]["/solve"]["post"][
+            "responses"
+        ]
+
+
+def test_with_keys_the_default_limit_applies_per_key(keyed_server: Server, keys: Keys) -> None:
+    """Keys on and FLEXWING_RATE_LIMIT unset: each key's bucket holds the default burst (100) and
+    refills at 50/s, so 600 requests as fast as one client sends them meet 429s; the document
+    says so."""
+    with httpx.Client(base_url=keyed_server.base_url, headers=bearer(keys.bob), timeout=60) as c:
+        statuses = Counter(c.get("/jobs").status_code for _ in range(600))
+        assert statuses[429] > 0 and statuses[200] > 0 and set(statuses) == {200, 429}
+        document = c.get("/openapi.json").json()
+        assert "429" in document["paths"]["/solve"]["post"]["responses"]
+        assert "50 per second" in document["info"]["description"]

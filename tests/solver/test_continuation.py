@@ -63,11 +63,13 @@ def test_the_branch_rises_in_q_until_its_fold(system):
 def test_a_continuation_step_evaluates_its_jacobians_once(system):
     """Chord start from the previous point, one Newton correction on Jacobians evaluated at the
     first corrected point, then a chord correction on the same factors: one evaluation per
-    step on the study wing (the fold's own trials are located on fresh Jacobians)."""
+    step on the study wing (the fold's own trials are located on fresh Jacobians). A step whose
+    correction does not contract is retried shorter, on fresh Jacobians: whether one does sits
+    on a threshold that round-off of another machine may cross, so one retry is allowed."""
     branch = _tracer(system).view(0.5 * DENSITY * 21.0**2)
     assert branch.fold is None and len(branch.points) > 5
     steps = np.diff([point.evaluations for point in branch.points])
-    assert np.all(steps == 1), steps
+    assert np.all(steps >= 1) and np.sum(steps - 1) <= 1, steps
 
 
 def test_each_branch_points_tangent_spans_the_augmented_jacobians_null_space(system):

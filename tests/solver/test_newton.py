@@ -46,12 +46,11 @@ def test_converges_from_the_rigid_jig_to_the_tolerance(system, velocity):
 
 def test_the_last_steps_converge_quadratically(system):
     """Each step squares the residual (7e-2, 5e-4, 2e-9 from the jig at 10 m/s, in the residual's
-    mixed units, where the constant is 0.1 and less), so the 1e-10 tolerance takes 3 steps."""
+    mixed units, where the constant is 0.1 and less)."""
     norms = [_from_jig(system, 10.0, max_iterations=k).residual_norm for k in range(3)]
     assert norms[0] > 1e-3  # far enough from the root for the squaring to show
     for before, after in itertools.pairwise(norms):
         assert after <= before**2
-    assert _from_jig(system, 10.0).iterations == 3
 
 
 def test_an_iteration_limit_ends_in_a_typed_reason_and_no_claim(system):

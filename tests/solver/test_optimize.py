@@ -107,7 +107,6 @@ def test_the_optimum_is_stable_and_solve_answers_the_same():
     assert np.array_equal(again.state, optimum.equilibrium.state)
     rebuilt = dataclasses.replace(optimum.wing)
     assert solver.solve(rebuilt, flight).totals.lift == pytest.approx(300.0, rel=1e-9)
-    assert optimum.optimizer.status in ("Solve_Succeeded", "Solved_To_Acceptable_Level")
 
 
 def test_every_constraint_is_reported_with_its_activity():
@@ -169,7 +168,11 @@ def test_a_lift_the_twist_bounds_cannot_reach_is_infeasible_and_says_which():
 def test_an_infeasible_spar_sizing_is_judged_at_the_walls_ipopt_reached():
     # Walls of at most 1 mm cannot keep the von Mises stress under a 1 MPa yield stress at 300 N
     # of lift (14 MPa at 2 mm), so IPOPT gives up, trading stress against lift. Its last design
-    # has an equilibrium: judged at walls 1000 times too thin, it had none.
+    # has an equilibrium: judged at walls 1000 times too thin, it had none. How IPOPT gives up
+    # (infeasibility detected, or its iteration limit) and where it stops depend on the machine's
+    # BLAS and the library's ISA level: what the design promises is that the answer is
+    # infeasible, names a violated constraint of that trade, and measures the violation at a
+    # design that has an equilibrium.
     problem = solver.DesignProblem(
         lift=300.0,
         velocity=12.0,
@@ -180,7 +183,7 @@ def test_an_infeasible_spar_sizing_is_judged_at_the_walls_ipopt_reached():
     with pytest.raises(solver.InfeasibleDesign) as raised:
         solver.optimize(_spar_wing(1e6), problem)
     assert raised.value.constraint in ("lift", "von_mises")
-    assert "IPOPT stopped with Infeasible_Problem_Detected" in str(raised.value)
+    assert raised.value.violation is not None and raised.value.violation > 1e-6
     assert "no equilibrium" not in str(raised.value)
 
 

@@ -52,7 +52,7 @@ def test_the_study_wing_at_cruise_prints_the_studys_numbers():
         == "Lift:       304.1 N flexible vs. 259.4 N rigid (+17.3%)"
     )
     assert e.stability.stable and e.stability.branch == "jig"
-    assert not e.solver.warm_start and e.solver.iterations == 3
+    assert not e.solver.warm_start
 
 
 # --- Limits and invariants ----------------------------------------------------------------------

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import solver
+from solver.trim import _trimmed_point
 from tests.reference import Reference, extended_references
 from tests.solver.test_reference_extended import QUANTITIES, RELATIVE_TOLERANCE
 from tests.study import study_wing
@@ -152,6 +153,42 @@ def test_trimmed_divergence_limit_is_where_the_margin_reaches_one():
     assert below.stability.stable and below.stability.margin == pytest.approx(1.0, abs=0.01)
     with pytest.raises(solver.NoEquilibrium, match="statically unstable"):
         solver.trim(wing, solver.TrimCondition(1.001 * limit.velocity, STUDY_WEIGHT))
+
+
+@pytest.mark.parametrize("factor", [1.001, 1.5, 4.0, 30.0], ids=lambda f: f"{f:g}x")
+def test_past_the_trimmed_limit_a_solve_and_a_sweep_name_the_limit(factor: float):
+    """The answer beyond the limit is the same alone and in a sweep, whatever else the sweep
+    asks, and names the limit (a sweep answers it without a trimmed solve)."""
+    wing = study_wing()
+    limit = solver.trimmed_divergence_limit(wing, STUDY_WEIGHT, RHO)
+    assert limit.velocity is not None
+    velocity = factor * limit.velocity
+    with pytest.raises(solver.NoEquilibrium) as raised:
+        solver.trim(wing, solver.TrimCondition(velocity, STUDY_WEIGHT))
+    assert raised.value.fold_velocity == limit.velocity
+    assert "past the trimmed divergence limit" in str(raised.value)
+    for others in ([], [10.0, 3 * velocity]):
+        point = solver.trim_sweep(wing, [velocity, *others], STUDY_WEIGHT, RHO).points[0]
+        assert point.status == "no_equilibrium" and point.no_equilibrium is not None
+        assert point.no_equilibrium.reason == str(raised.value)
+        assert point.no_equilibrium.fold_velocity == limit.velocity
+
+
+@pytest.mark.parametrize("factor", [1.001, 1.5, 4.0], ids=lambda f: f"{f:g}x")
+def test_past_the_trimmed_limit_the_trimmed_wing_is_unstable_where_it_exists(factor: float):
+    """What answering past the limit without a solve rests on: at a fixed lift the twist, and
+    with it the trimmed wing's divergence pressure, hardly move with q, so q passes it once;
+    every trimmed equilibrium beyond is unstable (or the trimmed path never reaches one)."""
+    wing = study_wing()
+    limit = solver.trimmed_divergence_limit(wing, STUDY_WEIGHT, RHO)
+    assert limit.velocity is not None
+    condition = solver.TrimCondition(factor * limit.velocity, STUDY_WEIGHT)
+    try:
+        point = _trimmed_point(wing, condition, solver.SolverOptions())
+    except solver.NoEquilibrium:
+        return  # the trimmed branch turned back first
+    local = point.local_divergence_pressure()
+    assert local is not None and local < condition.dynamic_pressure
 
 
 def test_trim_sweep_reports_divergence_at_a_fixed_lift():
