@@ -19,7 +19,11 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 __all__ = [
     "KEYED_RATE_LIMIT",
     "MAX_ARRAY_LENGTH",
-    "MAX_BATCH_ITEMS", "Settings", "default_jobs_db", "get_settings"]
+    "MAX_BATCH_ITEMS",
+    "Settings",
+    "default_jobs_db",
+    "get_settings",
+]
 
 # Hard ceiling on every array in a request, whatever the settings: validation stops at one
 # `too_long` error instead of judging (and listing) every item of a huge array. The configured

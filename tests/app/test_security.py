@@ -690,9 +690,9 @@ def test_the_embedded_deployment_never_throttles_its_owner(server: Server) -> No
     with server.client() as client:
         statuses = Counter(client.get("/jobs").status_code for _ in range(500))
         assert statuses == Counter({200: 500})
-        assert "429" not in client.get("/openapi.json").json()["paths"]["/solve"]["post"][
-            "responses"
-        ]
+        assert (
+            "429" not in client.get("/openapi.json").json()["paths"]["/solve"]["post"]["responses"]
+        )
 
 
 def test_with_keys_the_default_limit_applies_per_key(keyed_server: Server, keys: Keys) -> None:
