@@ -35,7 +35,7 @@ __all__ = [
 # Response model names that differ from the solver's class names (stable OpenAPI components).
 MODEL_NAMES = {
     "Equilibrium": "SolveResponse",
-    "SweepResult": "SweepResponse",
+    "AirspeedSweep": "SweepResponse",
     "SolveInfo": "SolverInfo",
     "DivergenceSummary": "Divergence",
     "PointFailure": "NoEquilibrium",
@@ -45,7 +45,9 @@ MODEL_NAMES = {
 # Fields the service adds to a solver type: name -> (type, default, description).
 API_ONLY_FIELDS: dict[str, dict[str, tuple[Any, Any, str]]] = {
     "SolveInfo": {"cached": (bool, False, "Answered from the result cache without solving.")},
-    "SweepInfo": {"cached": (bool, False, "Answered from the result cache without solving.")},
+    "AirspeedSweepInfo": {
+        "cached": (bool, False, "Answered from the result cache without solving.")
+    },
 }
 
 _models: dict[type, type[BaseModel]] = {}
@@ -127,5 +129,5 @@ def payload(result: Any) -> Any:
 
 # Build the two top-level models at import: every nested one follows.
 SolveResponse = response_model(solver.Equilibrium)
-SweepResponse = response_model(solver.SweepResult)
+SweepResponse = response_model(solver.AirspeedSweep)
 OptimizeResponse = response_model(solver.OptimalDesign)

@@ -146,11 +146,15 @@ def main() -> None:
             rows += [
                 (
                     "6-speed sweep + divergence summary, new wing (fold uncached)",
-                    lambda make=make: solver.sweep(new(make), STUDY_SWEEP, 5.0, RHO),
+                    lambda make=make: solver.airspeed_sweep(
+                        new(make), STUDY_SWEEP, solver.FlightCondition(None, 5.0, RHO)
+                    ),
                 ),
                 (
                     "6-speed sweep + divergence summary (fold cached)",
-                    lambda wing=wing: solver.sweep(wing, STUDY_SWEEP, 5.0, RHO),
+                    lambda wing=wing: solver.airspeed_sweep(
+                        wing, STUDY_SWEEP, solver.FlightCondition(None, 5.0, RHO)
+                    ),
                 ),
             ]
         print(f"  {'median of ' + str(repeat) + ' repeats':62s} {'wall':>11} {'CPU':>11}")

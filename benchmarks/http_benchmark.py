@@ -286,10 +286,10 @@ def bare_solver(count: int) -> dict[str, list[float]]:
         solver.solve(wing, solver.FlightCondition(v, 5.0), hint=answers[nearest])
         out["solve_warm"].append(time.perf_counter() - started)
         answers[v] = eq
-    solver.sweep(wing, SWEEP, 5.0, 1.225)
+    solver.airspeed_sweep(wing, SWEEP, solver.FlightCondition(None, 5.0, 1.225))
     for _ in range(max(count // 10, 20)):
         started = time.perf_counter()
-        solver.sweep(wing, SWEEP, 5.0, 1.225)
+        solver.airspeed_sweep(wing, SWEEP, solver.FlightCondition(None, 5.0, 1.225))
         out["sweep_seen"].append(time.perf_counter() - started)
     out["sweep_new"] = []
     for i in range(max(count // 20, 10)):
@@ -302,7 +302,7 @@ def bare_solver(count: int) -> dict[str, list[float]]:
             scaled["torsional_stiffness"],
         )
         started = time.perf_counter()
-        solver.sweep(new, SWEEP, 5.0, 1.225)
+        solver.airspeed_sweep(new, SWEEP, solver.FlightCondition(None, 5.0, 1.225))
         out["sweep_new"].append(time.perf_counter() - started)
     return out
 

@@ -61,7 +61,9 @@ def main() -> None:
     print(f"load average: {os.getloadavg()[0]:.1f} (2 cores)\n")
 
     sketch = solver.DesignProblem(
-        lift=300.0, velocity=12.0, density=rho, control_points=None, smoothness_weight=0.01
+        solver.DesignCondition(12.0, lift=300.0, density=rho),
+        design=solver.Design(solver.TwistDesign(control_points=None)),
+        smoothness_weight=0.01,
     )
     seconds, ours = _timed(lambda: solver.optimize(wing, sketch))
     flexible, rigid = theirs["flexible"], theirs["rigid"]
@@ -84,7 +86,7 @@ def main() -> None:
     near, far = ours.span_efficiency, ours.trefftz_span_efficiency
     print(f"  span efficiency: near field {near:.4f}, Trefftz {far:.4f}")
 
-    default = solver.DesignProblem(lift=300.0, velocity=12.0, density=rho)
+    default = solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0, density=rho))
     seconds, ours = _timed(lambda: solver.optimize(wing, default))
     print(
         f"\n6 control points, no penalty: {seconds:.3f} s with the rigid optimum "
@@ -96,11 +98,9 @@ def main() -> None:
     spar = solver.SparDesign(solver.ThicknessFraction(0.8), 0.002, carbon)
     spar_wing = solver.Wing.create(wing.y, wing.chord, 0.4, airfoil="naca0012", spar=spar)
     sizing = solver.DesignProblem(
-        lift=750.0,
-        velocity=14.0,
-        size_spar=True,
+        solver.DesignCondition(14.0, lift=750.0),
+        design=solver.Design(wall_thickness=solver.WallDesign(5e-4, 0.01)),
         objective="spar_mass",
-        wall_thickness_bounds=(5e-4, 0.01),
     )
     seconds, ours = _timed(lambda: solver.optimize(spar_wing, sizing))
     print(

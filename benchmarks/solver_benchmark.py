@@ -278,7 +278,9 @@ def benchmark(n: int, repeat: int, compile_s: float, compiled: bool) -> dict:
     neighbour = solver.FlightCondition(10.5, ALPHA, DENSITY)
     farther = solver.FlightCondition(12.0, ALPHA, DENSITY)
     sweeps = max(5, repeat // 5)
-    solver.sweep(wing, STUDY_SWEEP, ALPHA, DENSITY)  # the known wing: its branch cached
+    solver.airspeed_sweep(
+        wing, STUDY_SWEEP, solver.FlightCondition(None, ALPHA, DENSITY)
+    )  # the known wing: its branch cached
     return {
         "n": n,
         "unknowns": layout.n_unknowns,
@@ -295,10 +297,16 @@ def benchmark(n: int, repeat: int, compile_s: float, compiled: bool) -> dict:
         ),
         "warm_far_ms": median_ms(lambda: solver.solve(wing, farther, hint=equilibrium), repeat),
         "sweep_ms": median_ms(
-            lambda: solver.sweep(wing, STUDY_SWEEP, ALPHA, DENSITY), sweeps, f"sweep_known_{n}"
+            lambda: solver.airspeed_sweep(
+                wing, STUDY_SWEEP, solver.FlightCondition(None, ALPHA, DENSITY)
+            ),
+            sweeps,
+            f"sweep_known_{n}",
         ),
         "sweep_new_ms": median_each_ms(
-            lambda new: solver.sweep(new, STUDY_SWEEP, ALPHA, DENSITY),
+            lambda new: solver.airspeed_sweep(
+                new, STUDY_SWEEP, solver.FlightCondition(None, ALPHA, DENSITY)
+            ),
             new_wings(n, sweeps, offset=0),
             f"sweep_new_{n}",
         ),

@@ -53,7 +53,9 @@ def main() -> None:
     wing, rho, lift = reference.wing, reference.rho, reference.trimmed_lift
     velocities = [e["velocity"] for e in reference.equilibria]
     print(f"compiled model: {solver.warm_up(wing.n_stations, timeout=300)}")
-    solver.trim(wing, solver.TrimCondition(velocities[0], lift, rho))  # the wing at rest
+    solver.trim(
+        wing, solver.FlightCondition(velocities[0], density=rho, lift=lift)
+    )  # the wing at rest
 
     case = json.loads(CASE.read_text())
     with contextlib.redirect_stderr(io.StringIO()):
@@ -68,11 +70,13 @@ def main() -> None:
     print(header + f" {'AeroSandbox [ms]':>17} {'speed-up':>9} {'|alpha - ASB| [deg]':>20}")
     ratios, speedups = [], []
     for velocity in velocities:
-        trimmed = solver.trim(wing, solver.TrimCondition(velocity, lift, rho))
+        trimmed = solver.trim(wing, solver.FlightCondition(velocity, density=rho, lift=lift))
         alpha = trimmed.totals.alpha
         # Fresh speeds and alphas on every repeat: nothing of the request is cached.
         trim_ms = _median_ms(
-            lambda i, v=velocity: solver.trim(wing, solver.TrimCondition(v + 1e-6 * i, lift, rho))
+            lambda i, v=velocity: solver.trim(
+                wing, solver.FlightCondition(v + 1e-6 * i, density=rho, lift=lift)
+            )
         )
         solve_ms = _median_ms(
             lambda i, v=velocity, a=alpha: solver.solve(

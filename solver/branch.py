@@ -17,7 +17,7 @@ import numpy as np
 
 from solver.cache import cached, resize
 from solver.continuation import Branch, BranchTracer
-from solver.inputs import FlightCondition
+from solver.inputs import velocity_for
 from solver.jig import jig, linear_pressure
 from solver.loads import lift_and_drag, panel_loads
 from solver.results import Fold
@@ -40,14 +40,14 @@ def search_velocity_limit(system: CoupledSystem, density: float, velocity: float
     limit = _PAST_REQUESTED * velocity
     q_div = linear_pressure(system)
     if q_div is not None:
-        limit = max(limit, _PAST_LINEAR * FlightCondition.velocity_for(q_div, density))
+        limit = max(limit, _PAST_LINEAR * velocity_for(q_div, density))
     return limit
 
 
 def default_search_limit(system: CoupledSystem, density: float) -> float:
     """[m/s] how far to follow the branch when no speed is asked for: past the linear
     divergence speed, or, for a wing without one, past the speed of its pressure scale."""
-    return _PAST_LINEAR * FlightCondition.velocity_for(pressure_scale(system), density)
+    return _PAST_LINEAR * velocity_for(pressure_scale(system), density)
 
 
 def pressure_scale(system: CoupledSystem) -> float:
@@ -104,7 +104,7 @@ def fold(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
     if jig(system).unloaded:
         return _bifurcation(system, density, velocity_limit)
     found = branch(system, 0.5 * density * velocity_limit * velocity_limit)  # inf, no Overflow
-    reached = FlightCondition.velocity_for(found.reached_pressure, density)
+    reached = velocity_for(found.reached_pressure, density)
     point = found.fold
     if point is None:
         reason = found.reason or (
@@ -114,7 +114,7 @@ def fold(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
     layout = system.layout
     lift, _ = lift_and_drag(panel_loads(system, point.state, point.dynamic_pressure), system.alpha)
     return Fold(
-        velocity=FlightCondition.velocity_for(point.dynamic_pressure, density),
+        velocity=velocity_for(point.dynamic_pressure, density),
         dynamic_pressure=point.dynamic_pressure,
         tip_twist=float(point.state[layout.twist][-1]),
         lift=lift,
@@ -136,7 +136,7 @@ def _bifurcation(system: CoupledSystem, density: float, velocity_limit: float) -
             velocity_limit,
             "the unloaded jig is a stable equilibrium at every speed",
         )
-    velocity = FlightCondition.velocity_for(q_div, density)
+    velocity = velocity_for(q_div, density)
     return Fold(
         velocity=velocity,
         dynamic_pressure=q_div,

@@ -17,7 +17,7 @@ import numpy as np
 
 from solver.branch import default_search_limit, fold, search_velocity_limit
 from solver.errors import ConvergenceError, numerical_failures_as
-from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.inputs import SolverOptions, Wing, velocity_for
 from solver.jig import at_rest, linear_pressure
 from solver.results import DivergenceSummary, Equilibrium, FitDivergence, Fold, LinearDivergence
 from solver.system import CoupledSystem
@@ -57,7 +57,7 @@ def linear_divergence(
             "no positive real divergence eigenvalue: aerodynamic torque never overcomes the "
             "structure (e.g. the elastic axis lies ahead of the aerodynamic centre)",
         )
-    return LinearDivergence(q_div, FlightCondition.velocity_for(q_div, density))
+    return LinearDivergence(q_div, velocity_for(q_div, density))
 
 
 def fit_divergence(
@@ -97,7 +97,7 @@ def fit_divergence(
         return none("1/A does not fall with q: the fit predicts no divergence", slope, intercept)
     q_div = -intercept / slope
     density = stable[0].flight.density
-    velocity = FlightCondition.velocity_for(q_div, density) if q_div > 0 else None
+    velocity = velocity_for(q_div, density) if q_div > 0 else None
     return FitDivergence(
         slope,
         intercept,

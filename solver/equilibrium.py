@@ -9,7 +9,7 @@ from typing import Literal
 import numpy as np
 
 from solver.evaluation import Evaluation
-from solver.inputs import FlightCondition, SolverOptions
+from solver.inputs import OperatingPoint, SolverOptions, velocity_for
 from solver.jig import at_rest, jig, linear_pressure
 from solver.loads import RigidLoads, equilibrium_loads
 from solver.results import Equilibrium, SolveInfo, Stability
@@ -22,7 +22,7 @@ __all__ = ["judge", "stability_of"]
 
 def stability_of(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     evaluation: Evaluation,
     branch: Literal["jig", "other"] = "jig",
 ) -> Stability:
@@ -35,16 +35,14 @@ def stability_of(
         margin=0.0 if local is None else q / local,
         local_divergence_pressure=local,
         divergence_dynamic_pressure=linear,
-        divergence_velocity=(
-            None if linear is None else FlightCondition.velocity_for(linear, flight.density)
-        ),
+        divergence_velocity=(None if linear is None else velocity_for(linear, flight.density)),
         branch=branch,
     )
 
 
 def judge(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     options: SolverOptions,
     x: np.ndarray,
     evaluation: Evaluation,

@@ -12,8 +12,11 @@ inclusive (`ge`, `le`) or exclusive (`gt`, `lt`), each stated with the reason it
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import hashlib
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -21,7 +24,20 @@ import numpy as np
 
 from solver.errors import InvalidInput
 
-__all__ = ["Limits", "Spec", "is_number", "number", "parameter", "spec_of", "stations"]
+__all__ = [
+    "FORMS",
+    "Limits",
+    "Spec",
+    "digest",
+    "integer",
+    "is_number",
+    "number",
+    "parameter",
+    "prefixed",
+    "spec_of",
+    "specs",
+    "stations",
+]
 
 
 @dataclass(frozen=True)
@@ -68,16 +84,61 @@ class Limits:
         return ""
 
 
+# How a field is given (what the API's schema for it is derived from):
+#   number       a real number within the limits
+#   integer      a whole number within the limits (a count)
+#   flag         true or false
+#   choice       one of `choices`
+#   per_station  one number for every station, or N numbers, each within the limits
+#   positions    the stations: N increasing numbers from 0, or evenly spaced ones
+#                (`solver.inputs.StationSpacing`)
+#   airfoil      a camber line for every station or one per station (`solver.airfoil`)
+#   diameter     per_station, or a `solver.spar.ThicknessFraction`
+#   nested       an input dataclass of its own (`given`)
+#   items        a list of `given` input dataclasses
+#   velocities   airspeeds: a list, or `solver.inputs.VelocityRange`
+#   deformation  N numbers (a starting deformation), each within the limits
+FORMS = (
+    "number",
+    "integer",
+    "flag",
+    "choice",
+    "per_station",
+    "positions",
+    "airfoil",
+    "diameter",
+    "nested",
+    "items",
+    "velocities",
+    "deformation",
+)
+
+
 @dataclass(frozen=True)
 class Spec:
     """What an input field is: its unit ("-" dimensionless, "" none), a one-line description,
-    its limits, whether it is given per station, and an example value for documentation."""
+    its limits, how it is given (`form`, above; `given` the input dataclass of nested forms,
+    `choices` those of a choice), an example value for documentation, for a nested field whose
+    fields appear in its place in the API (`flatten`), and the fields of `given` a nested one
+    is given `without` (a sweep's flight has no airspeed of its own)."""
 
     unit: str
     description: str
     limits: Limits = Limits()
-    per_station: bool = False
+    form: str = "number"
     example: Any = None
+    given: type | None = None
+    choices: tuple[str, ...] = ()
+    flatten: bool = False
+    without: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.form not in FORMS:
+            raise ValueError(f"unknown input form {self.form!r}")
+
+    @property
+    def per_station(self) -> bool:
+        return self.form in ("per_station", "diameter")
 
 
 def parameter(
@@ -90,13 +151,29 @@ def parameter(
     lt: float | None = None,
     why: str = "",
     per_station: bool = False,
+    form: str | None = None,
+    given: type | None = None,
+    choices: tuple[str, ...] = (),
+    flatten: bool = False,
+    without: tuple[str, ...] = (),
     example: Any = None,
     **field_kwargs: Any,
 ) -> Any:
     """A dataclass field of an input, documented and limited (`field_kwargs`: default,
-    default_factory, ...)."""
-    spec = Spec(unit, description, Limits(ge, gt, le, lt, why), per_station, example)
+    default_factory, kw_only, ...). `per_station=True` is form "per_station"."""
+    kind = form or ("per_station" if per_station else "number")
+    limits = Limits(ge, gt, le, lt, why)
+    spec = Spec(unit, description, limits, kind, example, given, choices, flatten, without)
     return dataclasses.field(metadata={"input": spec}, **field_kwargs)
+
+
+def specs(cls: type) -> dict[str, Spec]:
+    """Every input field of dataclass `cls` and its `Spec`, in declaration order."""
+    return {
+        field.name: field.metadata["input"]
+        for field in dataclasses.fields(cls)  # type: ignore[arg-type]
+        if isinstance(field.metadata.get("input"), Spec)
+    }
 
 
 def spec_of(cls: type, name: str) -> Spec:
@@ -160,3 +237,66 @@ def stations(path: str, value: object, n: int | None, spec: Spec | None = None) 
     array = array + 0.0
     array.setflags(write=False)
     return array
+
+
+def integer(path: str, value: object, spec: Spec) -> int:
+    """`value` as an int within `spec`'s limits (a whole float such as 4.0 is 4: JSON has one
+    number type), else `InvalidInput` naming `path`."""
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise InvalidInput(path, "must be a whole number")
+    if not spec.limits.contains(np.asarray(float(value))):
+        raise _out_of_range(path, spec)
+    return int(value)
+
+
+@contextlib.contextmanager
+def prefixed(path: str) -> Iterator[None]:
+    """Name an `InvalidInput` raised inside from `path` on: "chord" in "wing" is "wing.chord"
+    (an empty field names `path` itself)."""
+    try:
+        yield
+    except InvalidInput as error:
+        inner = error.field
+        joined = (
+            path if not inner else f"{path}{inner}" if inner.startswith("[") else f"{path}.{inner}"
+        )
+        raise InvalidInput(joined, error.reason) from None
+
+
+def digest(value: object) -> bytes:
+    """A canonical identity of an input value: equal for equal numbers (-0.0 and 0.0 alike,
+    one number and the array it stands for are not the same value), recursing into
+    dataclasses (every field, by name), sequences and mappings. What every cache keys by."""
+    hasher = hashlib.blake2b(digest_size=16)
+    _feed(hasher, value)
+    return hasher.digest()
+
+
+def _feed(hasher: Any, value: object) -> None:
+    if value is None:
+        hasher.update(b"N")
+    elif isinstance(value, bool | np.bool_):
+        hasher.update(b"T" if value else b"F")
+    elif isinstance(value, np.ndarray) or is_number(value):
+        array = np.ascontiguousarray(np.asarray(value, dtype=np.float64) + 0.0)
+        hasher.update(b"A" + repr(array.shape).encode() + array.tobytes())
+    elif isinstance(value, str):
+        hasher.update(b"S" + str(len(value)).encode() + b":" + value.encode())
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        hasher.update(b"D" + type(value).__name__.encode())
+        for field in dataclasses.fields(value):
+            hasher.update(b"." + field.name.encode())
+            _feed(hasher, getattr(value, field.name))
+    elif isinstance(value, list | tuple):
+        hasher.update(b"L" + str(len(value)).encode())
+        for item in value:
+            _feed(hasher, item)
+    elif isinstance(value, dict):
+        hasher.update(b"M" + str(len(value)).encode())
+        for key in sorted(value):
+            _feed(hasher, key)
+            _feed(hasher, value[key])
+    else:
+        raise TypeError(f"no canonical identity for {type(value).__name__}")

@@ -27,12 +27,22 @@ Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
-__all__ = ["Lattice", "chordwise_nodes", "lattice", "streamwise_twist"]
+__all__ = [
+    "Lattice",
+    "arc_length",
+    "axis_force",
+    "chordwise_nodes",
+    "lattice",
+    "span_axis",
+    "streamwise_twist",
+]
 
 DEG = np.pi / 180.0
 
@@ -44,10 +54,40 @@ def chordwise_nodes(k: int) -> np.ndarray:
     return nodes
 
 
-def streamwise_twist(phi: ca.SX, slope: ca.SX, jig: ca.SX, sweep_deg: ca.SX) -> ca.SX:
-    """[deg] what the flow sees: phi cos(sweep) - degrees(du/ds) sin(sweep) + jig."""
-    sweep = sweep_deg * DEG
-    return phi * ca.cos(sweep) - slope / DEG * ca.sin(sweep) + jig
+# The kinematics of the swept beam, each written once: symbolic (CasADi) inside the model,
+# numeric (numpy arrays, a float sweep) in the answers, the same formula either way.
+
+
+def _cos_sin(sweep_deg: Any) -> tuple[Any, Any]:
+    """cos and sin of the sweep [deg]: CasADi's of a symbol, math's of a number."""
+    if isinstance(sweep_deg, ca.SX | ca.MX | ca.DM):
+        return ca.cos(sweep_deg * DEG), ca.sin(sweep_deg * DEG)
+    return math.cos(sweep_deg * DEG), math.sin(sweep_deg * DEG)
+
+
+def streamwise_twist(phi: Any, slope: Any, jig: Any, sweep_deg: Any) -> Any:
+    """[deg] what the flow sees: phi cos(sweep) - degrees(du/ds) sin(sweep) + jig, with phi
+    [deg] the twist about the elastic axis, du/ds [-] the beam's slope and jig [deg]."""
+    cos, sin = _cos_sin(sweep_deg)
+    return phi * cos - slope / DEG * sin + jig
+
+
+def arc_length(y: Any, sweep_deg: Any) -> Any:
+    """[m] distance from the root along the straight, swept elastic axis: y / cos(sweep)."""
+    return y / _cos_sin(sweep_deg)[0]
+
+
+def axis_force(fx: Any, fy: Any, sweep_deg: Any) -> Any:
+    """[N] the in-plane force across the elastic axis, Fx cos(sweep) - Fy sin(sweep): what a
+    heaved axis point turns into torque."""
+    cos, sin = _cos_sin(sweep_deg)
+    return fx * cos - fy * sin
+
+
+def span_axis(sweep_deg: Any) -> tuple[Any, Any]:
+    """(x, y) components of the elastic axis's unit direction e_s = (sin, cos, 0)."""
+    cos, sin = _cos_sin(sweep_deg)
+    return sin, cos
 
 
 @dataclass(frozen=True)

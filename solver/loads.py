@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.geometry import DEG
+from solver.geometry import axis_force, span_axis, streamwise_twist
 from solver.inputs import Wing
 from solver.results import Panels, Stations, Totals
 from solver.spar import TubeSpar
@@ -72,11 +72,10 @@ def lift_and_drag(loads: PanelLoads, alpha_deg: float) -> tuple[float, float]:
 def _bending_moment(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
     """(N,) [N m] flapwise bending moment about each station's elastic-axis point, from the
     panels' vertical forces at their spanwise arms along the elastic axis."""
-    sweep = wing.sweep * DEG
-    e_s = np.array([math.sin(sweep), math.cos(sweep), 0.0])
+    e_x, e_y = span_axis(wing.sweep)
+    arm = e_x * loads.center[0] + e_y * loads.center[1]
     fz = loads.per_strip(loads.force[2], k)
-    arc = wing.y / math.cos(sweep)  # [m] along the elastic axis
-    return outboard_sum(loads.per_strip(loads.force[2] * (e_s @ loads.center), k)) - arc * (
+    return outboard_sum(loads.per_strip(loads.force[2] * arm, k)) - wing.arc_length * (
         outboard_sum(fz)
     )
 
@@ -134,17 +133,16 @@ def equilibrium_loads(
     wing, layout, k = system.wing, system.layout, system.chordwise
     loads = panel_loads(system, x, q)
     lift, drag = lift_and_drag(loads, system.alpha)
-    sweep = wing.sweep * DEG
     force, center = loads.force, loads.center
     heave, slope, phi = x[layout.heave].copy(), x[layout.slope].copy(), x[layout.twist].copy()
-    twist = phi * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)  # streamwise, elastic
+    twist = streamwise_twist(phi, slope, 0.0, wing.sweep)  # elastic: without the jig twist
     fz = loads.per_strip(force[2], k)
     shear = outboard_sum(fz)
     bending_moment = _bending_moment(wing, loads, k)
     torque = outboard_sum(loads.per_strip(loads.torque, k))
     if system.deformed_axis:
-        axis_force = force[0] * math.cos(sweep) - force[1] * math.sin(sweep)
-        torque = torque - heave * outboard_sum(loads.per_strip(axis_force, k))
+        across = axis_force(force[0], force[1], wing.sweep)
+        torque = torque - heave * outboard_sum(loads.per_strip(across, k))
     strip_torque = loads.per_strip(loads.torque, k)
     widths = np.diff(wing.y)
     stations = Stations(
@@ -213,7 +211,7 @@ def _with_spar(
         max_von_mises_stress=largest,
         max_von_mises_y=float(wing.y[worst]),
         failure_margin=margin,
-        spar_mass=spar.mass(wing.y / math.cos(wing.sweep * DEG)),
+        spar_mass=spar.mass(wing.arc_length),
         root_bending_stress=float(stress.bending[0]),
         rigid_root_bending_stress=float(totals.rigid_root_bending_moment * root_section),
     )

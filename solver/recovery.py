@@ -22,7 +22,7 @@ import time
 from solver.branch import branch, fold, search_velocity_limit
 from solver.equilibrium import judge
 from solver.errors import ConvergenceError, NoEquilibrium
-from solver.inputs import FlightCondition, SolverOptions
+from solver.inputs import OperatingPoint, SolverOptions, velocity_for
 from solver.newton import newton
 from solver.results import Equilibrium
 from solver.system import CoupledSystem
@@ -32,7 +32,7 @@ __all__ = ["from_branch", "settle"]
 
 def settle(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     options: SolverOptions,
     prior_iterations: int,
     started: float,
@@ -47,7 +47,7 @@ def settle(
 
 def from_branch(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     options: SolverOptions,
     prior_iterations: int,
     started: float | None = None,
@@ -62,10 +62,10 @@ def from_branch(
     traced = branch(system, 0.5 * flight.density * velocity_limit**2)
     fold_point = traced.fold
     if fold_point is not None and q > fold_point.dynamic_pressure:
-        fold_velocity = FlightCondition.velocity_for(fold_point.dynamic_pressure, flight.density)
+        fold_velocity = velocity_for(fold_point.dynamic_pressure, flight.density)
         raise NoEquilibrium(flight.velocity, fold_velocity)
     if traced.reached_pressure < q:
-        reached = FlightCondition.velocity_for(traced.reached_pressure, flight.density)
+        reached = velocity_for(traced.reached_pressure, flight.density)
         why = traced.reason or "it ended"
         raise ConvergenceError(
             flight.velocity,

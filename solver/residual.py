@@ -43,7 +43,7 @@ import functools
 import casadi as ca
 import numpy as np
 
-from solver.geometry import DEG, Lattice, lattice
+from solver.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
 from solver.layout import Layout
 from solver.vlm import induced_velocities, normal_source_columns, source_columns
 
@@ -126,7 +126,7 @@ def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep
         (v_local[2, :] * leg[0, :] - v_local[0, :] * leg[2, :]) * g_row,
         (v_local[0, :] * leg[1, :] - v_local[1, :] * leg[0, :]) * g_row,
     )
-    e_s = ca.vertcat(ca.sin(sweep * DEG), ca.cos(sweep * DEG), 0)
+    e_s = span_axis(sweep)
     center = lat.center
     arm = e_s[0] * center[0, :] + e_s[1] * center[1, :]
     moment = ca.vertcat(
@@ -204,9 +204,8 @@ class _Beam:
 
     def __init__(self, layout: Layout, y: ca.MX, ei: ca.MX, gj: ca.MX, sweep: ca.MX) -> None:
         self.layout = layout
-        cos_sweep = ca.cos(sweep * DEG)
-        self.sin_sweep, self.cos_sweep = ca.sin(sweep * DEG), cos_sweep
-        self.s = y / cos_sweep  # [m] arc length along the EA
+        self.sweep = sweep
+        self.s = arc_length(y, sweep)  # [m] along the EA
         self.h = self.s[1:] - self.s[:-1]
         self.ei, self.gj = ei, gj
         k, strips = layout.chordwise, layout.n_strips
@@ -223,7 +222,7 @@ class _Beam:
 
     def axis_force(self, loads: ca.MX) -> ca.MX:
         """(N, c) outboard sum of Fx cos(sweep) - Fy sin(sweep)."""
-        return self.cos_sweep * self._outboard(loads, 0) - self.sin_sweep * self._outboard(loads, 1)
+        return axis_force(self._outboard(loads, 0), self._outboard(loads, 1), self.sweep)
 
     def rows(self, bending: ca.MX, torque: ca.MX) -> ca.MX:
         """(2(N-1), c): -h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) for M/EI and degrees(T/GJ)."""

@@ -18,7 +18,7 @@ import numpy as np
 
 from solver.errors import ConvergenceError, NoEquilibrium, SolverError
 from solver.evaluation import Evaluation
-from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.inputs import OperatingPoint, SolverOptions, Wing
 
 __all__ = [
     "DivergenceSummary",
@@ -37,9 +37,9 @@ __all__ = [
     "SolveInfo",
     "Stability",
     "Stations",
-    "SweepInfo",
-    "SweepPoint",
-    "SweepResult",
+    "AirspeedSweepInfo",
+    "AirspeedPoint",
+    "AirspeedSweep",
     "Totals",
     "quantity",
 ]
@@ -348,7 +348,7 @@ class Equilibrium:
     """A converged, statically judged equilibrium of one wing at one flight condition."""
 
     wing: Wing = internal()
-    flight: FlightCondition = internal()
+    flight: OperatingPoint = internal()
     options: SolverOptions = internal()  # how it was modelled and solved
     state: np.ndarray = internal()  # (n,) unknowns, see solver.layout
     evaluation: Evaluation = internal()  # r0, r1, J0, J1 at `state`
@@ -437,7 +437,7 @@ class PointFailure:
 
 
 @dataclass(frozen=True, eq=False)
-class SweepPoint:
+class AirspeedPoint:
     """One requested airspeed: an equilibrium, or the typed reason there is none."""
 
     error: Exception | None = internal()  # the SolverError, for Python callers
@@ -452,7 +452,7 @@ class SweepPoint:
     no_equilibrium: PointFailure | None = quantity("", "why there is none")
 
     @classmethod
-    def failed(cls, velocity: float, error: SolverError) -> SweepPoint:
+    def failed(cls, velocity: float, error: SolverError) -> AirspeedPoint:
         """The point at `velocity` [m/s] where the solver answered with `error`."""
         fold_velocity = error.fold_velocity if isinstance(error, NoEquilibrium) else None
         status: Literal["no_equilibrium", "not_converged"] = (
@@ -462,17 +462,17 @@ class SweepPoint:
 
 
 @dataclass(frozen=True)
-class SweepInfo:
+class AirspeedSweepInfo:
     seconds: float = quantity("s", "solver time")
 
 
 @dataclass(frozen=True, eq=False)
-class SweepResult:
+class AirspeedSweep:
     """One point per requested airspeed, in request order, and the divergence estimates."""
 
-    points: list[SweepPoint] = quantity("", "one per requested airspeed, in request order")
+    points: list[AirspeedPoint] = quantity("", "one per requested airspeed, in request order")
     divergence: DivergenceSummary = quantity("", "three torsional-divergence estimates")
-    solver: SweepInfo = quantity("", "how the answer was obtained")
+    solver: AirspeedSweepInfo = quantity("", "how the answer was obtained")
     validity: list[FindingOnset] = quantity(
         "",
         "from which airspeed on each finding of the points' `validity` appears, one entry per "

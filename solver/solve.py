@@ -25,13 +25,15 @@ from solver.branch import fold, pressure_scale, search_velocity_limit
 from solver.continuation import scaled_norm
 from solver.equilibrium import judge
 from solver.errors import InvalidInput, SolverError, numerical_failures_as
-from solver.inputs import FlightCondition, SolverOptions, Wing
+from solver.fields import prefixed
+from solver.inputs import FlightCondition, InitialGuess, OperatingPoint, SolverOptions, Wing
 from solver.jig import jig
 from solver.newton import newton
 from solver.path import PathSettings, follow
 from solver.recovery import settle
 from solver.results import Equilibrium
 from solver.system import CoupledSystem
+from solver.trim import trim
 
 __all__ = ["SAME_EQUILIBRIUM", "solve"]
 
@@ -43,15 +45,17 @@ SAME_EQUILIBRIUM = 1e-6
 
 def solve(
     wing: Wing,
-    flight: FlightCondition,
-    initial_guess: np.ndarray | None = None,
+    flight: FlightCondition | OperatingPoint,
+    initial_guess: np.ndarray | InitialGuess | None = None,
     options: SolverOptions | None = None,
     *,
     hint: Equilibrium | None = None,
 ) -> Equilibrium:
-    """The static aeroelastic equilibrium of `wing` at `flight`.
+    """The static aeroelastic equilibrium of `wing` at `flight`: at its angle of attack, or
+    trimmed to its lift (`solver.trim`: alpha solved for).
 
-    initial_guess: (n,) a state to start Newton from (unknowns as in `solver.layout`). If Newton
+    initial_guess: (n,) a state to start Newton from (unknowns as in `solver.layout`), or an
+        `InitialGuess` deformation (flight at a given alpha only). If Newton
         converges from it to an equilibrium other than the jig branch's, that equilibrium is
         returned, flagged `stability.branch == "other"` (and `stable` says whether it is); if it
         reaches the jig branch's, or fails, the answer is the one without a guess.
@@ -63,17 +67,33 @@ def solve(
     """
     started = time.perf_counter()
     options = options or SolverOptions()
+    if isinstance(flight, OperatingPoint):  # an answer's own point: solved at its alpha
+        flight = FlightCondition(flight.velocity, flight.alpha, flight.density)
+    if flight.velocity is None:
+        raise InvalidInput("velocity", "is required: the airspeed to solve at")
+    if isinstance(initial_guess, InitialGuess):
+        with prefixed("initial_guess"):
+            initial_guess = initial_guess.state(wing.n_stations, options.chordwise_panels)
+    if flight.alpha is None:
+        if initial_guess is not None:
+            raise InvalidInput(
+                "initial_guess",
+                "a starting deformation is for flight at a given alpha; a trimmed solve starts "
+                "from the rigid jig trimmed to the same lift",
+            )
+        return trim(wing, flight, options)
     if hint is not None and initial_guess is not None:
         raise InvalidInput("initial_guess", "give an initial_guess or a hint, not both")
-    system = CoupledSystem.of(wing, flight.alpha, options)
-    with numerical_failures_as(flight.velocity):
+    point = flight.at_alpha(flight.alpha)
+    system = CoupledSystem.of(wing, point.alpha, options)
+    with numerical_failures_as(point.velocity):
         if initial_guess is not None:
-            equilibrium = _from_initial_guess(system, flight, initial_guess, options, started)
+            equilibrium = _from_initial_guess(system, point, initial_guess, options, started)
         else:
-            equilibrium = _on_branch(system, flight, options, started, _usable(system, hint))
+            equilibrium = _on_branch(system, point, options, started, _usable(system, hint))
         if options.find_fold:
-            limit = search_velocity_limit(system, flight.density, flight.velocity)
-            equilibrium = dataclasses.replace(equilibrium, fold=fold(system, flight.density, limit))
+            limit = search_velocity_limit(system, point.density, point.velocity)
+            equilibrium = dataclasses.replace(equilibrium, fold=fold(system, point.density, limit))
     return equilibrium
 
 
@@ -93,7 +113,7 @@ def _path_settings(options: SolverOptions) -> PathSettings:
 
 def _on_branch(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     options: SolverOptions,
     started: float,
     hint: Equilibrium | None,
@@ -135,7 +155,7 @@ def _on_branch(
 
 def _from_initial_guess(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     initial_guess: np.ndarray,
     options: SolverOptions,
     started: float,

@@ -26,62 +26,96 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from solver import fields
 from solver.errors import InvalidInput
+from solver.fields import parameter
 
 __all__ = ["Material", "SparDesign", "SparStresses", "ThicknessFraction", "TubeSpar"]
 
 
-def _positive_number(field: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
-        raise InvalidInput(field, "must be a number")
-    number = float(value)
-    if not (math.isfinite(number) and number > 0):
-        raise InvalidInput(field, "must be a positive, finite number")
-    return number
-
-
 @dataclass(frozen=True)
 class Material:
-    """An isotropic spar material.
+    """An isotropic spar material (e.g. carbon-fibre tube: E 70 GPa, G 27 GPa, 1600 kg/m^3,
+    yield 600 MPa; aluminium 7075: 71.7 GPa, 26.9 GPa, 2810 kg/m^3, 503 MPa)."""
 
-    youngs_modulus: E [Pa]; shear_modulus: G [Pa]; density: [kg/m^3]; yield_stress: [Pa], the
-    von Mises stress at which it yields. All positive.
-    """
-
-    youngs_modulus: float
-    shear_modulus: float
-    density: float
-    yield_stress: float
+    youngs_modulus: float = parameter(
+        "Pa", "Young's modulus E", ge=1e6, le=1e13, why="foam to diamond", example=70e9
+    )
+    shear_modulus: float = parameter(
+        "Pa", "shear modulus G", ge=1e6, le=1e13, why="foam to diamond", example=27e9
+    )
+    density: float = parameter(
+        "kg/m^3", "density", ge=1.0, le=25000.0, why="foam to osmium", example=1600.0
+    )
+    yield_stress: float = parameter(
+        "Pa",
+        "von Mises stress at which it yields",
+        ge=1e3,
+        le=1e11,
+        why="foam to the strongest fibres",
+        example=600e6,
+    )
 
     def __post_init__(self) -> None:
-        for name in ("youngs_modulus", "shear_modulus", "density", "yield_stress"):
-            _positive_number(f"material.{name}", getattr(self, name))
+        for name, spec in fields.specs(Material).items():
+            fields.number(name, getattr(self, name), spec)
 
 
 @dataclass(frozen=True)
 class ThicknessFraction:
-    """An outer diameter given as `fraction` (0 to 1] of each section's airfoil thickness
-    (known for NACA 4-digit sections: the last two digits, percent of the chord)."""
+    """The outer diameter as a fraction of each section's airfoil thickness (known for NACA
+    4-digit sections: the last two digits, percent of the chord)."""
 
-    fraction: float
+    fraction_of_thickness: float = parameter(
+        "-",
+        "outer diameter over the airfoil's thickness",
+        ge=0.01,
+        le=1.0,
+        why="the tube fits inside the section",
+        example=0.8,
+    )
 
     def __post_init__(self) -> None:
-        value = _positive_number("outer_diameter.fraction_of_thickness", self.fraction)
-        if value > 1:
-            raise InvalidInput(
-                "outer_diameter.fraction_of_thickness", "must not exceed 1: the tube fits inside"
-            )
+        with fields.prefixed("outer_diameter"):
+            spec = fields.spec_of(ThicknessFraction, "fraction_of_thickness")
+            fields.number("fraction_of_thickness", self.fraction_of_thickness, spec)
+
+    @property
+    def fraction(self) -> float:
+        return self.fraction_of_thickness
 
 
 @dataclass(frozen=True)
 class SparDesign:
-    """A spar as given: `outer_diameter` one number [m] for every station, N numbers, or a
-    `ThicknessFraction`; `wall_thickness` one number or N [m]; `material`.
-    `solver.Wing.create` resolves it into the wing's `TubeSpar`."""
+    """A circular tube spar as given, per station: EI = E pi/64 (D^4 - d^4), GJ = G pi/32
+    (D^4 - d^4) with d = D - 2t (thick-walled); stresses at the outer fibre and the spar's mass
+    are reported. `solver.Wing.create` resolves it into the wing's `TubeSpar`."""
 
-    outer_diameter: object
-    wall_thickness: object
-    material: Material
+    outer_diameter: object = parameter(
+        "m",
+        "outer diameter D: one number for every station, N values, or {fraction_of_thickness} "
+        "of a NACA 4-digit section's thickness",
+        ge=1e-4,
+        le=10.0,
+        why="a model's carbon rod to a bridge girder",
+        form="diameter",
+        given=ThicknessFraction,
+        example=0.04,
+    )
+    wall_thickness: object = parameter(
+        "m",
+        "wall thickness t, at most D / 2 (a solid rod)",
+        ge=1e-5,
+        le=5.0,
+        why="10 micrometres to a solid 10 m rod",
+        per_station=True,
+        example=0.001,
+    )
+    material: Material = parameter("", "the spar's material", form="nested", given=Material)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.material, Material):
+            raise InvalidInput("material", "must be a solver.Material")
 
 
 @dataclass(frozen=True, eq=False)
@@ -149,15 +183,6 @@ class TubeSpar:
         bending = bending_moment * radius / self.second_moment
         shear = torque * radius / self.polar_moment
         return SparStresses(bending, shear, np.sqrt(bending**2 + 3 * shear**2))
-
-    @property
-    def key(self) -> bytes:
-        m = self.material
-        numbers = [m.youngs_modulus, m.shear_modulus, m.density, m.yield_stress]
-        return b"".join(
-            np.ascontiguousarray(a + 0.0, dtype=np.float64).tobytes()
-            for a in (self.outer_diameter, self.wall_thickness, np.array(numbers))
-        )
 
 
 @dataclass(frozen=True)

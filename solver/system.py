@@ -73,7 +73,7 @@ class CoupledSystem:
         return parameters
 
     @property
-    def key(self) -> tuple[str, float, int, bool]:
+    def key(self) -> tuple[bytes, float, int, bool]:
         """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike)."""
         return (self.wing.key, self.alpha + 0.0, self.chordwise, self.deformed_axis)
 

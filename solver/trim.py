@@ -41,20 +41,26 @@ from solver.branch import pressure_scale
 from solver.cache import cached
 from solver.divergence import fit_divergence, linear_divergence
 from solver.equilibrium import judge, stability_of
-from solver.errors import ConvergenceError, NoEquilibrium, SolverError, numerical_failures_as
+from solver.errors import (
+    ConvergenceError,
+    InvalidInput,
+    NoEquilibrium,
+    SolverError,
+    numerical_failures_as,
+)
 from solver.evaluation import Evaluation
 from solver.geometry import DEG
-from solver.inputs import FlightCondition, SolverOptions, TrimCondition, Wing
+from solver.inputs import FlightCondition, OperatingPoint, SolverOptions, Wing
 from solver.jig import AtRest, at_rest, linear_pressure
 from solver.loads import rigid_loads
 from solver.path import PathResult, PathSettings, follow
 from solver.results import (
+    AirspeedPoint,
+    AirspeedSweep,
+    AirspeedSweepInfo,
     DivergenceSummary,
     Equilibrium,
     Fold,
-    SweepInfo,
-    SweepPoint,
-    SweepResult,
 )
 from solver.system import CoupledSystem
 from solver.validity import onsets
@@ -63,7 +69,7 @@ __all__ = [
     "MAX_TRIM_ALPHA",
     "rigid_trim_alpha",
     "trim",
-    "trim_sweep",
+    "trimmed_airspeed_sweep",
     "trimmed_divergence_limit",
 ]
 
@@ -121,12 +127,21 @@ def _rigid_trim(base: CoupledSystem, lift_per_q: float, velocity: float) -> floa
 
 
 def rigid_trim_alpha(
-    wing: Wing, condition: TrimCondition, options: SolverOptions | None = None
+    wing: Wing, condition: FlightCondition, options: SolverOptions | None = None
 ) -> float:
-    """[deg] the angle of attack at which the rigid jig carries `condition.lift`."""
+    """[deg] the angle of attack at which the rigid jig carries a trimmed `condition`'s lift."""
     base = CoupledSystem.of(wing, 0.0, options or SolverOptions())
-    with numerical_failures_as(condition.velocity):
-        return _rigid_trim(base, condition.lift / condition.dynamic_pressure, condition.velocity)
+    velocity, lift = _airspeed_and_lift(condition)
+    with numerical_failures_as(velocity):
+        return _rigid_trim(base, lift / condition.dynamic_pressure, velocity)
+
+
+def _airspeed_and_lift(condition: FlightCondition) -> tuple[float, float]:
+    """([m/s], [N]) of a trimmed condition at an airspeed."""
+    lift = condition.required_lift
+    if condition.velocity is None or lift is None:
+        raise InvalidInput("", "a trimmed condition at an airspeed (velocity, and lift or weight)")
+    return condition.velocity, lift
 
 
 # ------------------------------------------------------------------------ the trimmed system
@@ -169,7 +184,7 @@ class _TrimmedPoint:
     """A converged trimmed state, before its verdict."""
 
     system: CoupledSystem  # at the trimmed alpha
-    flight: FlightCondition
+    flight: OperatingPoint
     x: np.ndarray
     evaluation: Evaluation  # of the untrimmed system at x (Jacobians at x or one step away)
     alpha_column: np.ndarray  # (n,) dr/dalpha at q
@@ -195,12 +210,13 @@ def _split(point: np.ndarray, evaluation: Evaluation, q: float) -> tuple[Evaluat
     return untrimmed, evaluation.jacobian0[:n, n] + q * evaluation.jacobian1[:n, n]
 
 
-def _trimmed_point(wing: Wing, condition: TrimCondition, options: SolverOptions) -> _TrimmedPoint:
+def _trimmed_point(wing: Wing, condition: FlightCondition, options: SolverOptions) -> _TrimmedPoint:
     """Follow the trimmed branch from the rigid trim at q = 0 to the condition's q."""
     q = condition.dynamic_pressure
+    velocity, lift = _airspeed_and_lift(condition)
     base = CoupledSystem.of(wing, 0.0, options)
-    lift_per_q = condition.lift / q
-    rigid_alpha = _rigid_trim(base, lift_per_q, condition.velocity)
+    lift_per_q = lift / q
+    rigid_alpha = _rigid_trim(base, lift_per_q, velocity)
     trimmed = _Trimmed(base, lift_per_q)
     rigid_state = at_rest(base).rigid_state(rigid_alpha)
     start = np.append(rigid_state, rigid_alpha)
@@ -219,18 +235,18 @@ def _trimmed_point(wing: Wing, condition: TrimCondition, options: SolverOptions)
     if not path.reached:
         if path.reason.startswith("path stalled"):
             raise NoEquilibrium(
-                condition.velocity,
+                velocity,
                 FlightCondition.velocity_for(path.dynamic_pressure, condition.density),
                 path.reason,
                 where="the trimmed branch from the rigid jig turns back before this airspeed",
             )
         raise ConvergenceError(
-            condition.velocity, path.iterations, path.residual_norm, f"trimming: {path.reason}"
+            velocity, path.iterations, path.residual_norm, f"trimming: {path.reason}"
         )
     alpha = float(path.x[-1])
     if not abs(alpha) < MAX_TRIM_ALPHA:
         raise NoEquilibrium(
-            condition.velocity,
+            velocity,
             None,
             where=f"the flexible wing needs alpha = {alpha:.4g} deg for this lift, beyond "
             f"+-{MAX_TRIM_ALPHA:g} deg",
@@ -246,7 +262,7 @@ def _trimmed_point(wing: Wing, condition: TrimCondition, options: SolverOptions)
     lift_row = path.evaluation.jacobian0[-1] * trimmed.area
     return _TrimmedPoint(
         system=base.at_alpha(alpha),
-        flight=FlightCondition(condition.velocity, alpha, condition.density),
+        flight=condition.at_alpha(alpha),
         x=path.x[:-1],
         evaluation=evaluation,
         alpha_column=alpha_column,
@@ -262,9 +278,12 @@ def _trimmed_point(wing: Wing, condition: TrimCondition, options: SolverOptions)
 # ------------------------------------------------------------------------------ the answers
 
 
-def trim(wing: Wing, condition: TrimCondition, options: SolverOptions | None = None) -> Equilibrium:
-    """The equilibrium that carries `condition.lift` [N] at its airspeed and density: alpha is
-    solved for (`totals.alpha`), and the rigid jig's trim for the same lift reported beside it
+def trim(
+    wing: Wing, condition: FlightCondition, options: SolverOptions | None = None
+) -> Equilibrium:
+    """The equilibrium that carries a trimmed `condition`'s lift [N] at its airspeed and
+    density: alpha is solved for (`totals.alpha`), and the rigid jig's trim for the same lift
+    reported beside it
     (`totals.rigid_alpha`, `panels.rigid_lift_per_span`, `totals.rigid_root_bending_moment`).
 
     Raises `NoEquilibrium` where the trimmed wing is statically unstable (past its trimmed
@@ -274,26 +293,27 @@ def trim(wing: Wing, condition: TrimCondition, options: SolverOptions | None = N
     """
     started = time.perf_counter()
     options = options or SolverOptions()
-    with numerical_failures_as(condition.velocity):
+    velocity, lift = _airspeed_and_lift(condition)
+    with numerical_failures_as(velocity):
         try:
             point = _trimmed_point(wing, condition, options)
             equilibrium = _answer(point, condition, options, started)
         except NoEquilibrium as error:
             raise _past_the_limit(wing, condition, options) or error from None
         if options.find_fold:
-            limit = trimmed_divergence_limit(wing, condition.lift, condition.density, options)
+            limit = trimmed_divergence_limit(wing, lift, condition.density, options)
             equilibrium = dataclasses.replace(equilibrium, fold=limit)
     return equilibrium
 
 
 def _answer(
-    point: _TrimmedPoint, condition: TrimCondition, options: SolverOptions, started: float
+    point: _TrimmedPoint, condition: FlightCondition, options: SolverOptions, started: float
 ) -> Equilibrium:
     q = condition.dynamic_pressure
     stability = stability_of(point.system, point.flight, point.evaluation)
     if not stability.stable:
         raise NoEquilibrium(
-            condition.velocity,
+            _airspeed_and_lift(condition)[0],
             None,
             f"its divergence pressure at the trimmed alpha {point.flight.alpha:.4g} deg is "
             f"{stability.local_divergence_pressure:.6g} Pa, below q = {q:.6g} Pa",
@@ -324,13 +344,18 @@ def _answer(
     return dataclasses.replace(equilibrium, totals=totals)
 
 
+def _trimmed(velocity: float, lift: float, density: float) -> FlightCondition:
+    return FlightCondition(velocity, density=density, lift=lift)
+
+
 def _past_the_limit(
-    wing: Wing, condition: TrimCondition, options: SolverOptions
+    wing: Wing, condition: FlightCondition, options: SolverOptions
 ) -> NoEquilibrium | None:
     """The answer for a trimmed condition beyond the wing's trimmed divergence limit, or None
     when it lies below the limit (or the wing has none)."""
-    limit = trimmed_divergence_limit(wing, condition.lift, condition.density, options)
-    return _beyond(limit, condition.velocity)
+    velocity, lift = _airspeed_and_lift(condition)
+    limit = trimmed_divergence_limit(wing, lift, condition.density, options)
+    return _beyond(limit, velocity)
 
 
 def _beyond(limit: Fold, velocity: float) -> NoEquilibrium | None:
@@ -396,7 +421,7 @@ def _trimmed_divergence_limit(
         nonlocal evaluations
         velocity = FlightCondition.velocity_for(q, density)
         with numerical_failures_as(velocity):
-            point = _trimmed_point(wing, TrimCondition(velocity, lift, density), options)
+            point = _trimmed_point(wing, _trimmed(velocity, lift, density), options)
             local = point.local_divergence_pressure()
         evaluations += point.path.iterations
         return (math.inf if local is None else local) - q, point
@@ -458,13 +483,13 @@ def _trimmed_divergence_limit(
     )
 
 
-def trim_sweep(
+def trimmed_airspeed_sweep(
     wing: Wing,
     velocities: Sequence[float],
     lift: float,
     density: float,
     options: SolverOptions | None = None,
-) -> SweepResult:
+) -> AirspeedSweep:
     """The wing trimmed to `lift` [N] at each airspeed [m/s], answered in the given order.
 
     Each point is `trim` at its speed (history-free). The trimmed divergence limit is found
@@ -478,14 +503,14 @@ def trim_sweep(
     started = time.perf_counter()
     options = options or SolverOptions()
     limit = trimmed_divergence_limit(wing, lift, density, options)
-    points: list[SweepPoint] = []
+    points: list[AirspeedPoint] = []
     for velocity in velocities:
         beyond = _beyond(limit, velocity)
         if beyond is not None:
-            points.append(SweepPoint.failed(velocity, beyond))
+            points.append(AirspeedPoint.failed(velocity, beyond))
             continue
         try:
-            condition = TrimCondition(velocity, lift, density)
+            condition = _trimmed(velocity, lift, density)
             with numerical_failures_as(velocity):
                 try:
                     point = _trimmed_point(wing, condition, options)
@@ -493,15 +518,18 @@ def trim_sweep(
                 except NoEquilibrium as error:
                     raise _past_the_limit(wing, condition, options) or error from None
         except SolverError as error:
-            points.append(SweepPoint.failed(velocity, error))
+            points.append(AirspeedPoint.failed(velocity, error))
             continue
-        points.append(SweepPoint(None, velocity, "equilibrium", equilibrium, None))
+        points.append(AirspeedPoint(None, velocity, "equilibrium", equilibrium, None))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
     divergence = DivergenceSummary(
         linear=linear_divergence(wing, density, options),
         fit=fit_divergence(stable, "lift_effectiveness"),
         fold=limit,
     )
-    return SweepResult(
-        points, divergence, SweepInfo(time.perf_counter() - started), validity=onsets(points)
+    return AirspeedSweep(
+        points,
+        divergence,
+        AirspeedSweepInfo(time.perf_counter() - started),
+        validity=onsets(points),
     )

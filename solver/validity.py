@@ -34,10 +34,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.evaluation import Evaluation
-from solver.inputs import FlightCondition, ValidityLimits, Wing
+from solver.inputs import OperatingPoint, ValidityLimits, Wing
 from solver.jig import at_rest, is_unloaded
 from solver.loads import rigid_loads
 from solver.results import (
+    AirspeedPoint,
     Finding,
     FindingCode,
     FindingMeasure,
@@ -46,7 +47,6 @@ from solver.results import (
     Panels,
     Stability,
     Stations,
-    SweepPoint,
 )
 from solver.system import CoupledSystem
 
@@ -219,7 +219,7 @@ def _stall(wing: Wing, panels: Panels, q: float, limits: ValidityLimits) -> list
 
 
 def lift_sensitivity(
-    system: CoupledSystem, flight: FlightCondition, x: np.ndarray, evaluation: Evaluation
+    system: CoupledSystem, flight: OperatingPoint, x: np.ndarray, evaluation: Evaluation
 ) -> float | None:
     """[-] d(lift)/d(q) at fixed alpha of the equilibrium x over the rigid wing's L_rigid / q,
     or None where the rigid wing carries no lift (or J is singular there).
@@ -259,7 +259,7 @@ def _lift_along(system: CoupledSystem, x: np.ndarray, direction: np.ndarray) -> 
 
 def _near_divergence(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     x: np.ndarray,
     evaluation: Evaluation,
     stability: Stability,
@@ -299,7 +299,7 @@ def _near_divergence(
 
 def assess(
     system: CoupledSystem,
-    flight: FlightCondition,
+    flight: OperatingPoint,
     limits: ValidityLimits,
     x: np.ndarray,
     evaluation: Evaluation,
@@ -320,7 +320,7 @@ def assess(
     ]
 
 
-def onsets(points: Sequence[SweepPoint]) -> list[FindingOnset]:
+def onsets(points: Sequence[AirspeedPoint]) -> list[FindingOnset]:
     """From which airspeed on each finding appears among the points' equilibria, one entry per
     code found, in the order of FINDING_CODES."""
     seen: dict[FindingCode, set[float]] = {}

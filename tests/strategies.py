@@ -18,6 +18,10 @@ from hypothesis import strategies as st
 import solver
 from solver import FlightCondition, Wing
 
+# The inputs' own limits (solver.fields): a generated wing and airspeed are valid input.
+STIFFNESS = (1e-3, 1e12)  # [N m^2]
+AIRSPEED = (0.01, 1000.0)  # [m/s]
+
 __all__ = ["WingCase", "alphas", "densities", "ratios", "speed_for", "wings"]
 
 
@@ -63,7 +67,8 @@ def _stiffness(
     level = 10.0 ** draw(st.floats(*decades))
     power = draw(st.sampled_from([0, 1, 2, 3]))
     scatter = np.array(draw(st.lists(st.floats(-1.0, 1.0), min_size=n, max_size=n)))
-    return level * chord**power * 10.0**scatter, {"level": level, "chord_power": power}
+    stiffness = np.clip(level * chord**power * 10.0**scatter, *STIFFNESS)
+    return stiffness, {"level": level, "chord_power": power}
 
 
 @st.composite
@@ -87,11 +92,12 @@ def wings(draw: st.DrawFn, min_stations: int = 3, max_stations: int = 40) -> Win
 
 def speed_for(wing: Wing, ratio: float, density: float) -> float:
     """`ratio` times the linear divergence speed or, for a wing that never diverges, a speed
-    spread log-uniformly over 1..500 m/s by the same ratio (`ratios` spans 0.05..2.5)."""
+    spread log-uniformly over 1..500 m/s by the same ratio (`ratios` spans 0.05..2.5); within
+    the airspeeds an input may have."""
     q_div = solver.linear_divergence_pressure(wing)
     if q_div is None:
         return float(10.0 ** (2.7 * ratio / 2.5))
-    return ratio * FlightCondition.velocity_for(q_div, density)
+    return float(np.clip(ratio * FlightCondition.velocity_for(q_div, density), *AIRSPEED))
 
 
 alphas = st.floats(-15.0, 15.0)

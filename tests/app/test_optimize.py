@@ -23,7 +23,9 @@ def test_the_study_example_is_optimised_like_python(client: httpx.Client):
     response = client.post("/optimize", json=_request())
     assert response.status_code == 200, response.text
     body = response.json()
-    ours = solver.optimize(study.study_wing(), solver.DesignProblem(lift=300.0, velocity=12.0))
+    ours = solver.optimize(
+        study.study_wing(), solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0))
+    )
     # The example's wing is the study's rounded to 10 digits, and IPOPT stops once its error
     # has stayed below 1e-8 for three iterations, where the twist holds to ~1e-7 deg
     # (`solver.optimize`): two runs whose round-off differs stop that far apart (measured

@@ -11,7 +11,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver import FlightCondition, Wing, find_fold, linear_divergence_pressure, solve, sweep
+from solver import (
+    FlightCondition,
+    Wing,
+    airspeed_sweep,
+    find_fold,
+    linear_divergence_pressure,
+    solve,
+)
 from solver.branch import branch, search_velocity_limit
 from solver.stability import divergence_pressure
 from solver.system import CoupledSystem
@@ -125,7 +132,7 @@ def test_equilibria_approach_the_fold_state_like_a_square_root(case):
 
 
 def test_a_sweep_of_slow_speeds_still_searches_past_linear_divergence():
-    result = sweep(study_wing(), [6, 10], 5.0, RHO)
+    result = airspeed_sweep(study_wing(), [6, 10], FlightCondition(None, 5.0, RHO))
     # 1.5 x 10 m/s = 15 m/s would stop short of the fold; the search goes past the linear
     # divergence speed (24.22 m/s) and finds it.
     assert result.divergence.fold.velocity == pytest.approx(21.4397, abs=1e-4)
@@ -133,7 +140,7 @@ def test_a_sweep_of_slow_speeds_still_searches_past_linear_divergence():
 
 def test_a_wing_without_a_fold_says_how_far_it_looked():
     wing = Wing.create(np.linspace(0, 4, 24), np.full(24, 0.8), 0.15, 5000.0, 400.0)
-    result = sweep(wing, [10, 30, 40], 5.0, RHO)
+    result = airspeed_sweep(wing, [10, 30, 40], FlightCondition(None, 5.0, RHO))
     fold = result.divergence.fold
     assert fold.velocity is None and fold.tip_twist is None and fold.lift is None
     assert fold.searched_to_velocity >= 1.5 * 40

@@ -37,7 +37,9 @@ def test_an_answer_is_the_same_in_a_fresh_process_and_after_many_unrelated_reque
         with contextlib.suppress(solver.SolverError):
             solver.solve(other, flight(4.0 + index % 9, alpha=(index % 7) - 3.0))
         if index % 10 == 0:
-            solver.sweep(wing, [6.0 + index / 10, 23.0], 5.0, condition.density)
+            solver.airspeed_sweep(
+                wing, [6.0 + index / 10, 23.0], solver.FlightCondition(None, 5.0, condition.density)
+            )
     meshes = {w.n_stations for w in [wing, *others]}
     # Entries were evicted and rebuilt on the way: fewer models are kept than meshes were used.
     assert solver.cache_info().entries.get("model", 0) < len(meshes)

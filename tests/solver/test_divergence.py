@@ -17,13 +17,13 @@ from solver import (
     FlightCondition,
     SolverOptions,
     Wing,
+    airspeed_sweep,
     divergence_summary,
     find_fold,
     fit_divergence,
     linear_divergence,
     linear_divergence_pressure,
     solve,
-    sweep,
 )
 from solver.branch import pressure_scale
 from solver.jig import jig
@@ -130,7 +130,7 @@ STUDY_SWEEP = [6, 10, 12, 15, 18, 20]  # [m/s] the study's sweep, section 14.6
 
 @pytest.fixture(scope="module")
 def study_sweep():
-    return sweep(study_wing(), STUDY_SWEEP, 5.0, RHO)
+    return airspeed_sweep(study_wing(), STUDY_SWEEP, FlightCondition(None, 5.0, RHO))
 
 
 def test_study_fit_reproduces_the_studys_numbers(study_sweep):
@@ -178,7 +178,7 @@ def test_lift_ratio_fit_differs_slightly_from_the_cl_fit(study_sweep):
     ids=["one-point", "rect_public-one-stable-point", "zero-lift"],
 )
 def test_fit_needs_two_stable_points(make_wing, alpha, velocities):
-    fit = sweep(make_wing(), velocities, alpha, RHO).divergence.fit
+    fit = airspeed_sweep(make_wing(), velocities, FlightCondition(None, alpha, RHO)).divergence.fit
     assert fit.dynamic_pressure is None and fit.velocity is None and fit.slope is None
     assert fit.reason is not None and "two or more" in fit.reason
 
@@ -188,7 +188,7 @@ def test_a_sweep_of_an_unloaded_jig_has_no_amplification_and_no_fit(alpha: float
     """Found by fuzzing: at alpha = 1e-9 deg the residual of the barely loaded jig already meets
     the tolerance, so the reported lift is not resolved against the rigid lift's 1e-7 N, and the
     fit of 1/A was NaN. Such a jig counts as unloaded (solver.jig): no amplification, no fit."""
-    result = sweep(study_wing(), [10.0, 15.0], alpha, RHO)
+    result = airspeed_sweep(study_wing(), [10.0, 15.0], FlightCondition(None, alpha, RHO))
     assert all(e.totals.lift_amplification is None for e in result.equilibria)
     fit = result.divergence.fit
     assert fit.dynamic_pressure is None and fit.reason is not None and "two or more" in fit.reason

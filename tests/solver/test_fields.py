@@ -10,7 +10,7 @@ import pytest
 from solver.errors import InvalidInput
 from solver.fields import Limits, Spec, number, stations
 
-CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), per_station=True)
+CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), form="per_station")
 SWEEP = Spec("deg", "sweep", Limits(gt=-60.0, lt=60.0))
 
 

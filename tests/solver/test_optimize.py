@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 import solver
-from solver.optimize import _DesignSpace, trefftz_matrix
+from solver.design_space import DesignSpace
+from solver.trefftz import trefftz_matrix
 from tests.reference import extended_references
 from tests.study import study_wing
 
@@ -24,11 +25,11 @@ CARBON = solver.Material(
 def _reference_problem() -> solver.DesignProblem:
     task = DESIGN.case["optimize"]
     return solver.DesignProblem(
-        lift=task["lift"],
-        velocity=task["velocity"],
-        density=DESIGN.rho,
-        alpha=task["alpha_deg"],
-        control_points=None,  # every station's jig twist, as the reference
+        solver.DesignCondition(
+            task["velocity"], lift=task["lift"], density=DESIGN.rho, alpha=task["alpha_deg"]
+        ),
+        # every station's jig twist, as the reference
+        design=solver.Design(solver.TwistDesign(control_points=None)),
         smoothness_weight=task["smoothness_weight"],
     )
 
@@ -40,7 +41,9 @@ def _reference_optimum() -> solver.OptimalDesign:
 
 @functools.cache
 def _study_optimum() -> solver.OptimalDesign:
-    return solver.optimize(study_wing(), solver.DesignProblem(lift=300.0, velocity=12.0))
+    return solver.optimize(
+        study_wing(), solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0))
+    )
 
 
 def _spar_wing(yield_stress: float = 600e6) -> solver.Wing:
@@ -122,9 +125,12 @@ def test_reduced_gradients_are_exact(rigid: bool):
     """Every function IPOPT sees, against central differences (step 1e-6: error ~1e-8)."""
     wing = _spar_wing()
     problem = solver.DesignProblem(
-        lift=600.0, velocity=14.0, size_spar=True, smoothness_weight=0.01, max_tip_heave=1.0
+        solver.DesignCondition(14.0, lift=600.0),
+        design=solver.Design(wall_thickness=solver.WallDesign()),
+        smoothness_weight=0.01,
+        constraints=solver.DesignConstraints(max_tip_heave=1.0),
     )
-    space = _DesignSpace(wing, problem, solver.SolverOptions(), rigid=rigid)
+    space = DesignSpace(wing, problem, solver.SolverOptions(), rigid=rigid)
     v = np.concatenate([np.linspace(3.0, 1.0, 6), np.full(30, 0.002)])
     direction = np.random.default_rng(7).normal(size=v.size)
     direction[6:] *= 1e-4  # walls in metres
@@ -142,11 +148,9 @@ def test_the_stress_constraint_binds_at_the_root_and_a_stronger_material_saves_m
     """Spar mass under 2.5 g: the walls sit on their lower bound (0.5 mm) wherever the stress
     allows, and thicken at the root, where the bending moment is largest, when it does not."""
     problem = solver.DesignProblem(
-        lift=750.0,
-        velocity=14.0,
-        size_spar=True,
+        solver.DesignCondition(14.0, lift=750.0),
+        design=solver.Design(wall_thickness=solver.WallDesign(5e-4, 0.01)),
         objective="spar_mass",
-        wall_thickness_bounds=(5e-4, 0.01),
     )
     weak = solver.optimize(_spar_wing(30e6), problem)
     strong = solver.optimize(_spar_wing(45e6), problem)
@@ -159,7 +163,10 @@ def test_the_stress_constraint_binds_at_the_root_and_a_stronger_material_saves_m
 
 
 def test_a_lift_the_twist_bounds_cannot_reach_is_infeasible_and_says_which():
-    problem = solver.DesignProblem(lift=3000.0, velocity=12.0, twist_bounds=(-2.0, 2.0))
+    problem = solver.DesignProblem(
+        solver.DesignCondition(12.0, lift=3000.0),
+        design=solver.Design(solver.TwistDesign(lower=-2.0, upper=2.0)),
+    )
     with pytest.raises(solver.InfeasibleDesign) as raised:
         solver.optimize(study_wing(), problem)
     assert raised.value.constraint in ("lift", "jig_twist")
@@ -174,11 +181,9 @@ def test_an_infeasible_spar_sizing_is_judged_at_the_walls_ipopt_reached():
     # infeasible, names a violated constraint of that trade, and measures the violation at a
     # design that has an equilibrium.
     problem = solver.DesignProblem(
-        lift=300.0,
-        velocity=12.0,
-        size_spar=True,
+        solver.DesignCondition(12.0, lift=300.0),
+        design=solver.Design(wall_thickness=solver.WallDesign(5e-4, 1e-3)),
         objective="spar_mass",
-        wall_thickness_bounds=(5e-4, 1e-3),
     )
     with pytest.raises(solver.InfeasibleDesign) as raised:
         solver.optimize(_spar_wing(1e6), problem)
@@ -192,32 +197,50 @@ def test_the_designed_wing_keeps_the_sections_maximum_lift_coefficient():
     wing = solver.Wing.create(
         base.y, base.chord, 0.4, base.bending_stiffness, base.torsional_stiffness, cl_max=0.8
     )
-    design = solver.optimize(wing, solver.DesignProblem(lift=300.0, velocity=12.0))
+    design = solver.optimize(wing, solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0)))
     assert design.equilibrium.wing.cl_max is not None
     assert np.all(design.equilibrium.wing.cl_max == 0.8)
 
 
+def _spar_mass_unsized() -> object:
+    return solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0), objective="spar_mass")
+
+
 @pytest.mark.parametrize(
-    ("changes", "field"),
+    ("pose", "field"),
     [
-        ({"objective": "spar_mass"}, "objective"),
-        ({"lift": -1.0}, "lift"),
-        ({"control_points": 1}, "control_points"),
-        ({"twist_bounds": (5.0, -5.0)}, "twist_bounds"),
+        (_spar_mass_unsized, "objective"),
+        (lambda: solver.DesignCondition(12.0, lift=-1.0), "lift"),
+        (lambda: solver.DesignCondition(12.0), ""),
+        (lambda: solver.TwistDesign(control_points=1), "control_points"),
+        (lambda: solver.TwistDesign(lower=5.0, upper=-5.0), ""),
+        (lambda: solver.WallDesign(lower=0.01, upper=0.001), ""),
     ],
-    ids=["mass-without-sizing", "negative-lift", "one-control-point", "inverted-bounds"],
+    ids=[
+        "mass-without-sizing",
+        "negative-lift",
+        "neither-lift-nor-weight",
+        "one-control-point",
+        "inverted-twist-bounds",
+        "inverted-wall-bounds",
+    ],
 )
-def test_a_problem_that_cannot_be_posed_is_invalid_input(changes, field):
+def test_a_problem_that_cannot_be_posed_is_invalid_input(pose, field):
+    """The field is named from the object that refuses it ('' for the object as a whole): a
+    request's path is prefixed where it is built."""
     with pytest.raises(solver.InvalidInput) as raised:
-        solver.DesignProblem(**({"lift": 300.0, "velocity": 12.0} | changes))
+        pose()
     assert raised.value.field == field
 
 
 def test_sizing_a_spar_the_wing_does_not_have_is_invalid_input():
-    problem = solver.DesignProblem(lift=300.0, velocity=12.0, size_spar=True)
+    problem = solver.DesignProblem(
+        solver.DesignCondition(12.0, lift=300.0),
+        design=solver.Design(wall_thickness=solver.WallDesign()),
+    )
     with pytest.raises(solver.InvalidInput) as raised:
         solver.optimize(study_wing(), problem)
-    assert raised.value.field == "size_spar"
+    assert raised.value.field == "design.wall_thickness"
 
 
 def test_a_wall_thicker_than_the_tube_can_hold_is_an_infeasible_design():
@@ -225,7 +248,8 @@ def test_a_wall_thicker_than_the_tube_can_hold_is_an_infeasible_design():
     thin_tube = solver.SparDesign(1e-3, 1e-4, CARBON)  # 1 mm rod: radius 0.5 mm
     wing = solver.Wing.create(np.linspace(0.0, 1.0, 8), 0.1, 0.4, spar=thin_tube)
     problem = solver.DesignProblem(
-        lift=1.0, velocity=10.0, size_spar=True, wall_thickness_bounds=(1e-3, 0.05)
+        solver.DesignCondition(10.0, lift=1.0),
+        design=solver.Design(wall_thickness=solver.WallDesign(1e-3, 0.05)),
     )
     with pytest.raises(solver.InfeasibleDesign) as raised:
         solver.optimize(wing, problem)

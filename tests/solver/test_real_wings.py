@@ -108,10 +108,10 @@ def test_a_very_stiff_wing_gives_the_rigid_answer(wing):
         base.y,
         base.chord,
         base.elastic_axis,
-        base.bending_stiffness * 1e7,
-        base.torsional_stiffness * 1e7,
+        np.minimum(base.bending_stiffness * 1e7, 1e12),  # the largest stiffness accepted
+        np.minimum(base.torsional_stiffness * 1e7, 1e12),
         sweep=base.sweep,
-        airfoil=list(base.camber),
+        airfoil=list(base.airfoil),
     )
     e = solver.solve(
         stiff, FlightCondition(15.0, 4.0, 1.225), options=SolverOptions(chordwise_panels=3)
@@ -142,7 +142,9 @@ def test_divergence_fit_fold_and_stability_work_for_the_extended_model(wing, opt
     """A sweep to past the fold: stable points below it, no equilibrium beyond, the fold between
     the last answered speed and the first refused, the fit and the linear estimate present, and
     every stability margin rising with speed."""
-    result = solver.sweep(wing(), list(np.linspace(8, 40, 17)), 3.0, 1.225, options)
+    result = solver.airspeed_sweep(
+        wing(), list(np.linspace(8, 40, 17)), solver.FlightCondition(None, 3.0, 1.225), options
+    )
     fold = result.divergence.fold.velocity
     assert fold is not None
     answered = [p for p in result.points if p.status == "equilibrium"]

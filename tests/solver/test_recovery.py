@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver import FlightCondition, NoEquilibrium, SolverOptions, find_fold, solve, sweep
+from solver import FlightCondition, NoEquilibrium, SolverOptions, airspeed_sweep, find_fold, solve
 from tests.study import DENSITY as RHO
 from tests.study import rect_public, study_wing
 
@@ -45,7 +45,7 @@ def test_no_equilibrium_beyond_the_fold(case, factor):
         solve(wing, FlightCondition(velocity, alpha, RHO))
     assert raised.value.fold_velocity == pytest.approx(fold.velocity, rel=1e-12)
     assert f"{fold.velocity:.6g} m/s" in str(raised.value)
-    point = sweep(wing, [velocity], alpha, RHO).points[0]
+    point = airspeed_sweep(wing, [velocity], FlightCondition(None, alpha, RHO)).points[0]
     assert point.equilibrium is None and isinstance(point.error, NoEquilibrium)
     assert point.status == "no_equilibrium"
     assert point.no_equilibrium is not None
@@ -53,7 +53,7 @@ def test_no_equilibrium_beyond_the_fold(case, factor):
 
 
 def test_rect_public_sweep_past_the_fold_is_not_answered_plainly():
-    result = sweep(rect_public(), [10, 20, 25], 4.0, RHO)
+    result = airspeed_sweep(rect_public(), [10, 20, 25], FlightCondition(None, 4.0, RHO))
     below, *beyond = result.points
     assert below.equilibrium is not None and below.equilibrium.stability.stable
     # AeroSandbox: 172.48854420335485 N at 10 m/s (shared/reference/ref_rect_public.json).

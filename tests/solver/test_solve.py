@@ -171,26 +171,22 @@ def _never_diverging_in_practice() -> solver.Wing:
     return solver.Wing.create(y, chord, [0.25] * 4 + [0.05078125] * 4, 10.0, 1.0)
 
 
-@pytest.mark.parametrize("hint_velocity", [30.0, 300.0, 3e3], ids=["30mps", "300mps", "3e3mps"])
-def test_a_hint_does_not_change_the_outcome_at_an_absurd_airspeed(hint_velocity: float):
+@pytest.mark.parametrize("hint_velocity", [30.0, 300.0], ids=["30mps", "300mps"])
+def test_a_hint_does_not_change_the_outcome_at_the_fastest_airspeed(hint_velocity: float):
     """Found by fuzzing: this wing's divergence pressure is round-off (1.5e18 Pa before it was
     filtered); at 1.08e9 m/s the cold solve said NoEquilibrium and the solve hinted with an
-    equilibrium at 5.4e8 m/s returned an answer. Now both follow the branch from the jig, which
-    cannot be followed that far in the steps allowed: the same typed error, whatever the hint."""
+    equilibrium at 5.4e8 m/s returned an answer. Such speeds are refused now (the lattice is
+    incompressible: 1000 m/s at most); at the fastest accepted the hint changes nothing."""
     wing = _never_diverging_in_practice()
-    condition = FlightCondition(velocity=1081208826.6422322, alpha=1.0, density=1.225)
+    with pytest.raises(solver.InvalidInput) as raised:
+        FlightCondition(velocity=1081208826.6422322, alpha=1.0, density=1.225)
+    assert raised.value.field == "velocity"
+    condition = FlightCondition(velocity=1000.0, alpha=1.0, density=1.225)
     hint = solve(wing, condition.at_velocity(hint_velocity))
     assert hint.stability.stable
-
-    def outcome(**kwargs):
-        try:
-            return solve(wing, condition, **kwargs)
-        except solver.SolverError as error:
-            return error
-
-    cold, hinted = outcome(), outcome(hint=hint)
-    assert type(hinted) is type(cold), (cold, hinted)
-    assert isinstance(cold, ConvergenceError)
+    cold, hinted = solve(wing, condition), solve(wing, condition, hint=hint)
+    assert cold.stability.stable and hinted.stability.stable
+    assert hinted.lift == pytest.approx(cold.lift, rel=TWO_SOLVES)
 
 
 def test_a_hint_of_another_wing_or_off_the_branch_is_ignored():
@@ -275,21 +271,26 @@ def test_a_malformed_initial_guess_is_invalid_input(guess: np.ndarray):
 # --- Typed failures -----------------------------------------------------------------------------
 
 
-def test_no_iterations_allowed_raises_a_typed_convergence_error():
-    with pytest.raises(ConvergenceError) as raised:
-        solve(study_wing(), flight(15.0), options=SolverOptions(max_iterations=0))
-    error = raised.value
-    assert error.velocity == 15.0 and error.reason and "15" in str(error)
+@pytest.mark.parametrize(
+    ("options", "field"),
+    [({"max_iterations": 0}, "max_iterations"), ({"tolerance": 1e-300}, "tolerance")],
+    ids=["no-iterations", "below-round-off"],
+)
+def test_a_budget_no_solve_can_meet_is_refused_as_input(options: dict, field: str):
+    """No iterations, or a tolerance below round-off (the residual bottoms out near 1e-15),
+    can never give an equilibrium: they are refused before any numerics, as the API does."""
+    with pytest.raises(solver.InvalidInput) as raised:
+        SolverOptions(**options)
+    assert raised.value.field == field
 
 
-def test_an_unreachable_tolerance_is_a_convergence_error():
-    """A tolerance below round-off (the residual bottoms out near 1e-15) is never met."""
-    with pytest.raises(ConvergenceError) as raised:
-        solve(study_wing(), flight(15.0), options=SolverOptions(tolerance=1e-300, max_iterations=4))
-    assert raised.value.velocity == 15.0
+def test_the_tightest_tolerance_allowed_is_met():
+    options = SolverOptions(tolerance=1e-14)
+    e = solve(study_wing(), flight(15.0), options=options)
+    assert e.solver.residual_norm <= 1e-14
 
 
-@pytest.mark.parametrize("max_iterations", range(6))
+@pytest.mark.parametrize("max_iterations", range(1, 6))
 @pytest.mark.parametrize("velocity", [10.0, 20.0])
 def test_only_converged_stable_states_are_returned(velocity: float, max_iterations: int):
     """Whatever the iteration budget: an equilibrium that meets the tolerance, or an error."""
@@ -325,13 +326,16 @@ def test_the_study_density_is_the_one_aerosandboxs_reference_used():
 def test_a_degenerate_wing_ends_in_a_typed_error_not_a_crash():
     """Found by schema fuzzing: 131 stations over a 1e-5 m semispan under an 81 m chord made the
     rigid wing's system singular, and LinAlgError escaped (HTTP 500). Valid input whose numbers
-    cannot be computed is a ConvergenceError."""
-    wing = solver.Wing.create(np.linspace(0, 1e-5, 131), 81.38702612179208, 0.778, 9.7e11, 5.7e11)
+    cannot be computed is a ConvergenceError. (Semispans under 1 cm are refused now; the
+    shortest accepted, under the same chord, is solved.)"""
+    wing = solver.Wing.create(np.linspace(0, 0.01, 131), 81.38702612179208, 0.778, 9.7e11, 5.7e11)
     try:
         solve(wing, FlightCondition(812.55, 25.43, 1.225))
     except solver.SolverError as error:
         assert isinstance(error, ConvergenceError | NoEquilibrium)
-    (point,) = solver.sweep(wing, [812.55], 25.43, 1.225).points  # no exception escapes
+    (point,) = solver.airspeed_sweep(
+        wing, [812.55], solver.FlightCondition(None, 25.43, 1.225)
+    ).points  # no exception escapes
     if point.status == "equilibrium":
         assert point.equilibrium is not None and point.no_equilibrium is None
     else:

@@ -60,7 +60,9 @@ def test_a_wing_without_aerodynamic_torque_reports_no_divergence_pressure(alpha)
     aerodynamic torque, every mu is round-off (~1e-30), and 1/mu came out as 1e29 Pa or
     overflowed to inf. Round-off lies below NEGLIGIBLE ||G||: no divergence pressure."""
     wing = solver.Wing.create(np.linspace(0, 10, 30), 1.0, 0.25, 10.0, 100.0)
-    point = solver.sweep(wing, [12.02264434617413], alpha, 1.225).points[0]
+    point = solver.airspeed_sweep(
+        wing, [12.02264434617413], solver.FlightCondition(None, alpha, 1.225)
+    ).points[0]
     assert point.equilibrium is not None
     local = point.equilibrium.stability.local_divergence_pressure
     assert local is None
@@ -94,7 +96,9 @@ def test_the_reported_divergence_pressure_is_that_of_the_converged_state(make_wi
     away would already cost ~1e-3)."""
     wing = make_wing()
     system = CoupledSystem(wing, alpha)
-    swept = solver.sweep(wing, [6.0, 10.0, 12.0, 15.0, 18.0, 20.0], alpha, 1.225)
+    swept = solver.airspeed_sweep(
+        wing, [6.0, 10.0, 12.0, 15.0, 18.0, 20.0], solver.FlightCondition(None, alpha, 1.225)
+    )
     answers = [p.equilibrium for p in swept.points if p.equilibrium is not None]
     answers += [solver.solve(wing, e.flight) for e in answers]
     assert len(answers) >= 10

@@ -41,7 +41,7 @@ RIGID_POINTS = [
 
 @functools.cache
 def _trimmed(reference: Reference, velocity: float) -> solver.Equilibrium:
-    condition = solver.TrimCondition(velocity, reference.trimmed_lift, reference.rho)
+    condition = solver.FlightCondition(velocity, density=reference.rho, lift=reference.trimmed_lift)
     return solver.trim(reference.wing, condition, reference.options)
 
 
@@ -72,7 +72,7 @@ def test_trimmed_equilibrium_matches_aerosandbox(reference, velocity, quantity: 
 
 @pytest.mark.parametrize(("reference", "velocity", "alpha"), RIGID_POINTS)
 def test_rigid_trim_matches_aerosandbox(reference, velocity, alpha):
-    condition = solver.TrimCondition(velocity, reference.trimmed_lift, reference.rho)
+    condition = solver.FlightCondition(velocity, density=reference.rho, lift=reference.trimmed_lift)
     assert abs(solver.rigid_trim_alpha(reference.wing, condition, reference.options) - alpha) <= (
         ALPHA_TOLERANCE
     )
@@ -81,7 +81,7 @@ def test_rigid_trim_matches_aerosandbox(reference, velocity, alpha):
 
 @pytest.mark.parametrize("velocity", [8.0, 14.0, 20.0, 23.0], ids=lambda v: f"{v:g}ms")
 def test_alpha_solve_at_the_trimmed_alpha_is_the_same_equilibrium(velocity: float):
-    trimmed = solver.trim(study_wing(), solver.TrimCondition(velocity, STUDY_WEIGHT))
+    trimmed = solver.trim(study_wing(), solver.FlightCondition(velocity, lift=STUDY_WEIGHT))
     at_alpha = solver.solve(study_wing(), solver.FlightCondition(velocity, trimmed.totals.alpha))
     # Both converge to 1e-10 in the residual; the difference is that times the conditioning,
     # which grows as 1 / (1 - q/q_div) towards divergence (23 m/s: margin 0.91).
@@ -93,7 +93,7 @@ def test_alpha_solve_at_the_trimmed_alpha_is_the_same_equilibrium(velocity: floa
 
 @pytest.mark.parametrize("lift", [300.0, -150.0, 1e-3], ids=["weight", "negative", "tiny"])
 def test_the_lift_is_held(lift: float):
-    trimmed = solver.trim(study_wing(), solver.TrimCondition(12.0, lift))
+    trimmed = solver.trim(study_wing(), solver.FlightCondition(12.0, lift=lift))
     assert trimmed.totals.lift == pytest.approx(lift, rel=1e-9)
     assert trimmed.totals.rigid_lift == pytest.approx(lift, rel=1e-9)
     assert trimmed.totals.lift_amplification == pytest.approx(1.0, rel=1e-9)
@@ -102,8 +102,8 @@ def test_the_lift_is_held(lift: float):
 
 def test_twice_the_lift_needs_more_alpha_but_less_than_the_rigid_wing_and_twice_the_moment():
     wing, velocity = study_wing(), 12.0
-    two_g = solver.trim(wing, solver.TrimCondition(velocity, 2 * STUDY_WEIGHT))
-    one_g = solver.trim(wing, solver.TrimCondition(velocity, STUDY_WEIGHT))
+    two_g = solver.trim(wing, solver.FlightCondition(velocity, lift=2 * STUDY_WEIGHT))
+    one_g = solver.trim(wing, solver.FlightCondition(velocity, lift=STUDY_WEIGHT))
     # The flexible wing twists nose-up under the load, so it needs less alpha than the rigid one.
     assert two_g.totals.alpha > one_g.totals.alpha
     assert two_g.totals.alpha < two_g.totals.rigid_alpha
@@ -131,7 +131,7 @@ def _lift_slope(wing, velocity: float, alpha: float, *, rigid: bool) -> float:
 @pytest.mark.parametrize("velocity", [10.0, 18.0], ids=lambda v: f"{v:g}ms")
 def test_lift_effectiveness_is_the_ratio_of_lift_curve_slopes(velocity: float):
     wing = study_wing()
-    trimmed = solver.trim(wing, solver.TrimCondition(velocity, STUDY_WEIGHT))
+    trimmed = solver.trim(wing, solver.FlightCondition(velocity, lift=STUDY_WEIGHT))
     flexible = _lift_slope(wing, velocity, trimmed.totals.alpha, rigid=False)
     rigid = _lift_slope(wing, velocity, trimmed.totals.rigid_alpha, rigid=True)
     # Central differences over 1e-3 deg: truncation ~1e-7 relative, round-off ~1e-9 / 1e-3.
@@ -149,10 +149,10 @@ def test_trimmed_divergence_limit_is_where_the_margin_reaches_one():
     # one, so the limit lies just below the classical speed (within 1 %), far above the
     # fold of the 5 deg branch (21.4 m/s).
     assert 0.99 * linear.velocity < limit.velocity < linear.velocity
-    below = solver.trim(wing, solver.TrimCondition(0.999 * limit.velocity, STUDY_WEIGHT))
+    below = solver.trim(wing, solver.FlightCondition(0.999 * limit.velocity, lift=STUDY_WEIGHT))
     assert below.stability.stable and below.stability.margin == pytest.approx(1.0, abs=0.01)
     with pytest.raises(solver.NoEquilibrium, match="statically unstable"):
-        solver.trim(wing, solver.TrimCondition(1.001 * limit.velocity, STUDY_WEIGHT))
+        solver.trim(wing, solver.FlightCondition(1.001 * limit.velocity, lift=STUDY_WEIGHT))
 
 
 @pytest.mark.parametrize("factor", [1.001, 1.5, 4.0, 30.0], ids=lambda f: f"{f:g}x")
@@ -164,11 +164,13 @@ def test_past_the_trimmed_limit_a_solve_and_a_sweep_name_the_limit(factor: float
     assert limit.velocity is not None
     velocity = factor * limit.velocity
     with pytest.raises(solver.NoEquilibrium) as raised:
-        solver.trim(wing, solver.TrimCondition(velocity, STUDY_WEIGHT))
+        solver.trim(wing, solver.FlightCondition(velocity, lift=STUDY_WEIGHT))
     assert raised.value.fold_velocity == limit.velocity
     assert "past the trimmed divergence limit" in str(raised.value)
     for others in ([], [10.0, 3 * velocity]):
-        point = solver.trim_sweep(wing, [velocity, *others], STUDY_WEIGHT, RHO).points[0]
+        point = solver.airspeed_sweep(
+            wing, [velocity, *others], solver.FlightCondition(None, density=RHO, lift=STUDY_WEIGHT)
+        ).points[0]
         assert point.status == "no_equilibrium" and point.no_equilibrium is not None
         assert point.no_equilibrium.reason == str(raised.value)
         assert point.no_equilibrium.fold_velocity == limit.velocity
@@ -182,7 +184,7 @@ def test_past_the_trimmed_limit_the_trimmed_wing_is_unstable_where_it_exists(fac
     wing = study_wing()
     limit = solver.trimmed_divergence_limit(wing, STUDY_WEIGHT, RHO)
     assert limit.velocity is not None
-    condition = solver.TrimCondition(factor * limit.velocity, STUDY_WEIGHT)
+    condition = solver.FlightCondition(factor * limit.velocity, lift=STUDY_WEIGHT)
     try:
         point = _trimmed_point(wing, condition, solver.SolverOptions())
     except solver.NoEquilibrium:
@@ -193,7 +195,9 @@ def test_past_the_trimmed_limit_the_trimmed_wing_is_unstable_where_it_exists(fac
 
 def test_trim_sweep_reports_divergence_at_a_fixed_lift():
     wing = study_wing()
-    result = solver.trim_sweep(wing, [26.0, 8.0, 16.0, 22.0], STUDY_WEIGHT, RHO)
+    result = solver.airspeed_sweep(
+        wing, [26.0, 8.0, 16.0, 22.0], solver.FlightCondition(None, density=RHO, lift=STUDY_WEIGHT)
+    )
     statuses = [point.status for point in result.points]
     assert statuses == ["no_equilibrium", "equilibrium", "equilibrium", "equilibrium"]
     margins = [p.equilibrium.stability.margin for p in result.points[1:]]
@@ -207,7 +211,7 @@ def test_trim_sweep_reports_divergence_at_a_fixed_lift():
     )
     assert result.divergence.fold.kind == "trimmed_stability_limit"
     for point in result.points[1:]:
-        alone = solver.trim(wing, solver.TrimCondition(point.velocity, STUDY_WEIGHT))
+        alone = solver.trim(wing, solver.FlightCondition(point.velocity, lift=STUDY_WEIGHT))
         assert np.array_equal(alone.state, point.equilibrium.state)
 
 
@@ -220,16 +224,18 @@ def test_a_trimmed_limit_whose_secant_leaves_positive_pressures_says_so():
     limit = solver.trimmed_divergence_limit(wing, 1e-6, 1e-4)
     assert limit.velocity is None and "positive dynamic pressures" in limit.reason
     assert limit.searched_to_velocity > 0
-    result = solver.trim_sweep(wing, [10.0], 1e-6, 1e-4)
+    result = solver.airspeed_sweep(
+        wing, [10.0], solver.FlightCondition(None, density=1e-4, lift=1e-6)
+    )
     assert result.divergence.fold == limit
 
 
 def test_a_trimmed_answer_does_not_depend_on_history():
-    wing, condition = study_wing(), solver.TrimCondition(15.0, STUDY_WEIGHT)
+    wing, condition = study_wing(), solver.FlightCondition(15.0, lift=STUDY_WEIGHT)
     solver.clear_caches()
     fresh = solver.trim(wing, condition)
     for velocity in (9.0, 21.0, 15.5):
-        solver.trim(wing, solver.TrimCondition(velocity, 2 * STUDY_WEIGHT))
+        solver.trim(wing, solver.FlightCondition(velocity, lift=2 * STUDY_WEIGHT))
         solver.solve(wing, solver.FlightCondition(velocity, 3.0))
     again = solver.trim(wing, condition)
     assert np.array_equal(fresh.state, again.state)
@@ -246,7 +252,7 @@ def test_a_trimmed_answer_does_not_depend_on_history():
 )
 def test_a_lift_the_wing_cannot_carry_is_no_equilibrium(velocity, lift, match):
     with pytest.raises(solver.NoEquilibrium, match=match):
-        solver.trim(study_wing(), solver.TrimCondition(velocity, lift))
+        solver.trim(study_wing(), solver.FlightCondition(velocity, lift=lift))
 
 
 @pytest.mark.parametrize(
@@ -261,5 +267,5 @@ def test_a_lift_the_wing_cannot_carry_is_no_equilibrium(velocity, lift, match):
 )
 def test_a_trim_condition_rejects_what_cannot_be_flown(fields, field):
     with pytest.raises(solver.InvalidInput) as raised:
-        solver.TrimCondition(**fields)
+        solver.FlightCondition(**fields)
     assert raised.value.field == field

@@ -1,5 +1,5 @@
-"""solver.sweep: every point the branch's equilibrium at its airspeed, in the order asked, the
-same whatever the order, and the study's printed sweep."""
+"""solver.airspeed_sweep: every point the branch's equilibrium at its airspeed, in the order asked,
+the same whatever the order, and the study's printed sweep."""
 
 from __future__ import annotations
 
@@ -12,7 +12,9 @@ from tests.study import DENSITY, SPAN, SWEEP, study_wing
 
 @pytest.fixture(scope="module")
 def study_sweep() -> dict[float, solver.Equilibrium]:
-    result = solver.sweep(study_wing(), list(SWEEP), 5.0, DENSITY)
+    result = solver.airspeed_sweep(
+        study_wing(), list(SWEEP), solver.FlightCondition(None, 5.0, DENSITY)
+    )
     assert all(point.status == "equilibrium" for point in result.points)
     return {point.velocity: point.equilibrium for point in result.points}
 
@@ -73,9 +75,13 @@ def test_a_sweep_point_is_the_solve_at_that_airspeed(study_sweep):
 
 def test_the_order_of_the_airspeeds_changes_nothing():
     wing = study_wing()
-    forward = solver.sweep(wing, [6.0, 12.0, 18.0, 23.0], 5.0, DENSITY)
+    forward = solver.airspeed_sweep(
+        wing, [6.0, 12.0, 18.0, 23.0], solver.FlightCondition(None, 5.0, DENSITY)
+    )
     solver.clear_caches()
-    backward = solver.sweep(wing, [23.0, 18.0, 12.0, 6.0], 5.0, DENSITY)
+    backward = solver.airspeed_sweep(
+        wing, [23.0, 18.0, 12.0, 6.0], solver.FlightCondition(None, 5.0, DENSITY)
+    )
     by_speed = {p.velocity: p for p in backward.points}
     for point in forward.points:
         other = by_speed[point.velocity]
@@ -86,7 +92,9 @@ def test_the_order_of_the_airspeeds_changes_nothing():
 
 
 def test_points_beyond_the_fold_say_why():
-    result = solver.sweep(study_wing(), [20.0, 22.0], 5.0, DENSITY)
+    result = solver.airspeed_sweep(
+        study_wing(), [20.0, 22.0], solver.FlightCondition(None, 5.0, DENSITY)
+    )
     answered, beyond = result.points
     assert answered.status == "equilibrium" and answered.no_equilibrium is None
     assert beyond.status == "no_equilibrium" and beyond.equilibrium is None

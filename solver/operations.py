@@ -1,0 +1,166 @@
+"""What the solver can be asked, one input type per operation: each holds everything its answer
+depends on, declared once (`solver.fields`), and `run()` answers it.
+
+These are the web service's request bodies too (`app.schemas` derives them), and what its
+workers run, so a request changes form once, into one of these, between the route and the
+answer. Each one's `key` is its canonical identity (equal inputs, equal keys), which the
+service's result cache keys by.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
+
+from solver import fields
+from solver.airspeed_sweep import airspeed_sweep
+from solver.design import DesignProblem
+from solver.errors import InvalidInput
+from solver.fields import parameter
+from solver.inputs import (
+    FLIGHT_RULE,
+    FlightCondition,
+    InitialGuess,
+    SolverOptions,
+    VelocityRange,
+    Wing,
+)
+from solver.optimize import optimize
+from solver.results import AirspeedSweep, Equilibrium, OptimalDesign
+from solver.solve import solve
+
+__all__ = ["OPERATIONS", "OptimizeInput", "SolveInput", "SweepInput"]
+
+
+@dataclass(frozen=True, eq=False)
+class SolveInput:
+    """One wing at one flight condition."""
+
+    wing: Wing = parameter("", "the wing", form="nested", given=Wing)
+    flight: FlightCondition = parameter(
+        "", f"the flight condition: {FLIGHT_RULE}", form="nested", given=FlightCondition
+    )
+    initial_guess: InitialGuess | None = parameter(
+        "",
+        "optional starting deformation for Newton",
+        form="nested",
+        given=InitialGuess,
+        default=None,
+    )
+    options: SolverOptions | None = parameter(
+        "", "optional solver options", form="nested", given=SolverOptions, default=None
+    )
+
+    def __post_init__(self) -> None:
+        if self.flight.velocity is None:
+            raise InvalidInput("flight.velocity", "is required: the airspeed to solve at")
+        if self.initial_guess is not None and self.flight.trimmed:
+            raise InvalidInput(
+                "initial_guess",
+                "a starting deformation is for flight at a given alpha; a trimmed solve starts "
+                "from the rigid jig trimmed to the same lift",
+            )
+        if self.initial_guess is not None:
+            with fields.prefixed("initial_guess"):
+                self.initial_guess.state(self.wing.n_stations, self.modelled.chordwise_panels)
+
+    @property
+    def modelled(self) -> SolverOptions:
+        """The options in force (the defaults where none are given)."""
+        return self.options or SolverOptions()
+
+    @cached_property
+    def key(self) -> bytes:
+        return fields.digest(self)
+
+    def run(self) -> Equilibrium:
+        return solve(self.wing, self.flight, self.initial_guess, self.modelled)
+
+
+@dataclass(frozen=True, eq=False)
+class SweepInput:
+    """One wing over several airspeeds; every point is the equilibrium on the branch from the
+    jig shape at that airspeed, whatever the order."""
+
+    wing: Wing = parameter("", "the wing", form="nested", given=Wing)
+    flight: FlightCondition = parameter(
+        "",
+        f"the flight condition at every airspeed: {FLIGHT_RULE}",
+        form="nested",
+        given=FlightCondition,
+        without=("velocity",),
+    )
+    velocities: tuple[float, ...] | VelocityRange = parameter(
+        "m/s",
+        "airspeeds, answered in this order: a list or {start, stop, count}",
+        form="velocities",
+        given=VelocityRange,
+        example=[6.0, 10.0, 12.0, 15.0, 18.0, 20.0],
+    )
+    options: SolverOptions | None = parameter(
+        "", "optional solver options", form="nested", given=SolverOptions, default=None
+    )
+
+    def __post_init__(self) -> None:
+        if isinstance(self.velocities, VelocityRange):
+            return
+        spec = fields.spec_of(FlightCondition, "velocity")
+        for index, velocity in enumerate(self.velocities):
+            fields.number(f"velocities[{index}]", velocity, spec)
+        if not self.velocities:
+            raise InvalidInput("velocities", "needs at least one airspeed")
+
+    @property
+    def airspeeds(self) -> tuple[float, ...]:
+        """[m/s] the airspeeds, in request order."""
+        if isinstance(self.velocities, VelocityRange):
+            return self.velocities.velocities()
+        return tuple(float(v) for v in self.velocities)
+
+    @property
+    def modelled(self) -> SolverOptions:
+        return self.options or SolverOptions()
+
+    @cached_property
+    def key(self) -> bytes:
+        return fields.digest(self)
+
+    def run(self) -> AirspeedSweep:
+        return airspeed_sweep(self.wing, self.airspeeds, self.flight, self.modelled)
+
+
+@dataclass(frozen=True, eq=False)
+class OptimizeInput:
+    """A design problem: the jig twist (and spar wall) of the wing that flies."""
+
+    wing: Wing = parameter("", "the wing", form="nested", given=Wing)
+    problem: DesignProblem = parameter(
+        "", "the design problem", form="nested", given=DesignProblem, flatten=True
+    )
+    options: SolverOptions | None = parameter(
+        "", "optional solver options", form="nested", given=SolverOptions, default=None
+    )
+
+    def __post_init__(self) -> None:
+        if self.problem.size_spar and self.wing.spar is None:
+            raise InvalidInput("design.wall_thickness", "the wing has no spar to size")
+
+    @property
+    def modelled(self) -> SolverOptions:
+        return self.options or SolverOptions()
+
+    @cached_property
+    def key(self) -> bytes:
+        return fields.digest(self)
+
+    def run(self) -> OptimalDesign:
+        return optimize(self.wing, self.problem, self.modelled)
+
+
+# Operation name -> its input type; `run()` answers each.
+OPERATIONS: dict[str, Callable[..., object]] = {
+    "solve": SolveInput,
+    "sweep": SweepInput,
+    "optimize": OptimizeInput,
+}
