@@ -16,9 +16,9 @@ from fastapi.openapi.utils import get_openapi
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__, security
+from app.execution.pool import WorkerPool
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
-from app.pool import WorkerPool
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
 from app.routes import health, optimize, page, solve, sweep
 from app.routes import jobs as job_routes

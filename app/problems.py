@@ -19,8 +19,11 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope
 
+from solver import ConvergenceError, InfeasibleDesign, InvalidInput, NoEquilibrium, SolverError
+
 __all__ = [
     "PROBLEM_MEDIA_TYPE",
+    "SOLVER_PROBLEMS",
     "FieldError",
     "Problem",
     "ProblemDetails",
@@ -28,6 +31,8 @@ __all__ = [
     "PROBLEM_TYPES",
     "UnexpectedErrors",
     "install_handlers",
+    "problem_body",
+    "problem_of",
     "problem_response",
 ]
 
@@ -177,6 +182,58 @@ class Problem(Exception):
         )
 
 
+def _finite_or_none(value: float | None) -> float | None:
+    return None if value is None or value != value or abs(value) == float("inf") else value
+
+
+# The one table from the solver's typed errors to problem types: a solver error becomes a
+# problem here and nowhere else (the worker passes the error itself along).
+SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
+    InvalidInput: lambda e: Problem.invalid([FieldError(e.field or "body", e.reason)]),
+    NoEquilibrium: lambda e: Problem(
+        "no-equilibrium",
+        str(e),
+        extensions={"velocity": e.velocity, "fold_velocity": e.fold_velocity},
+    ),
+    ConvergenceError: lambda e: Problem(
+        "not-converged",
+        str(e),
+        extensions={
+            "velocity": e.velocity,
+            "iterations": e.iterations,
+            "residual_norm": _finite_or_none(e.residual_norm),
+            "reason": e.reason,
+        },
+    ),
+    InfeasibleDesign: lambda e: Problem(
+        "infeasible-design", str(e), extensions={"constraint": e.constraint}
+    ),
+}
+
+
+def problem_of(error: SolverError | InvalidInput) -> Problem:
+    """The problem a solver error is answered with (`SOLVER_PROBLEMS`, by its class)."""
+    for kind in type(error).__mro__:
+        make = SOLVER_PROBLEMS.get(kind)
+        if make is not None:
+            return make(error)
+    return Problem("not-converged", str(error), extensions={"reason": str(error)})
+
+
+def problem_body(problem: Problem, instance: str | None = None) -> dict[str, Any]:
+    """A problem as its problem+json body."""
+    body: dict[str, Any] = {
+        "type": problem.type.uri,
+        "title": problem.type.title,
+        "status": problem.status,
+        "detail": problem.detail,
+    }
+    if instance is not None:
+        body["instance"] = instance
+    body.update(problem.extensions)
+    return body
+
+
 class ProblemFieldError(BaseModel):
     field: str = Field(description="Dotted path of the bad input, e.g. `wing.chord[3]`.")
     reason: str = Field(description="What is wrong with it.")
@@ -210,15 +267,9 @@ class ProblemDetails(BaseModel):
 def problem_response(
     problem: Problem, instance: str | None = None, *, status: int | None = None
 ) -> JSONResponse:
-    body: dict[str, Any] = {
-        "type": problem.type.uri,
-        "title": problem.type.title,
-        "status": status or problem.status,
-        "detail": problem.detail,
-    }
-    if instance is not None:
-        body["instance"] = instance
-    body.update(problem.extensions)
+    body = problem_body(problem, instance)
+    if status is not None:
+        body["status"] = status
     return JSONResponse(
         body,
         status_code=status or problem.status,

@@ -321,7 +321,8 @@ def document(schema: dict[str, Any], settings: Settings) -> None:
         "string",
     )
     limited = _problem(
-        "Over this client's rate limit (/problems/rate-limited): retry after Retry-After.",
+        "Over this client's rate limit (/problems/rate-limited): retry after Retry-After. Only "
+        "where the service has rate limits: with API keys, or FLEXWING_RATE_LIMIT set.",
         "Retry-After",
         "[s] until this client's next request is accepted",
         "integer",
@@ -333,7 +334,7 @@ def document(schema: dict[str, Any], settings: Settings) -> None:
                 operation["security"] = []
             else:
                 responses.setdefault("401", unauthorized)
-            if settings.client_rate_limit > 0 and path not in UNLIMITED_PATHS:
+            if path not in UNLIMITED_PATHS:
                 responses.setdefault("429", limited)
     sharing = (
         "Sharing: with API keys on (FLEXWING_API_KEYS_FILE) every operation but healthz and readyz "

@@ -13,7 +13,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field, field_validator
+from pydantic import AliasChoices, Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 __all__ = [
@@ -53,7 +53,7 @@ def _cpu_count() -> int:
 
 
 class Settings(BaseSettings):
-    model_config = SettingsConfigDict(env_prefix="FLEXWING_", extra="ignore")
+    model_config = SettingsConfigDict(env_prefix="FLEXWING_", extra="ignore", populate_by_name=True)
 
     workers: int = Field(
         default_factory=_cpu_count,
@@ -91,13 +91,15 @@ class Settings(BaseSettings):
     optimize_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /optimize in a worker."
     )
-    jobs_per_worker: int = Field(
+    tasks_per_worker: int = Field(
         default=2,
         ge=1,
         le=8,
+        validation_alias=AliasChoices("flexwing_tasks_per_worker", "flexwing_jobs_per_worker"),
         description=(
-            "Jobs handed to each worker at once: one running, the rest queued behind it so the "
-            "worker never idles between jobs (a time budget counts only the run)."
+            "Tasks (solves, sweeps, designs, batch items) handed to each worker at once: one "
+            "running, the rest queued behind it so the worker never idles between them (a time "
+            "budget counts only the run). FLEXWING_JOBS_PER_WORKER, its former name, is read too."
         ),
     )
     max_pending: int = Field(
@@ -164,7 +166,7 @@ class Settings(BaseSettings):
         le=64,
         description=(
             "Jobs running at once; each fans its work out over every worker (a batch keeps "
-            "workers x jobs_per_worker items in flight)."
+            "workers x tasks_per_worker items in flight)."
         ),
     )
     max_batch_items: int = Field(

@@ -44,6 +44,7 @@ from solver.fields import Limits, Spec, digest, spec_of, specs
 from solver.inputs import (
     FLIGHT_RULE,
     ISA_SEA_LEVEL_DENSITY,
+    MAX_CAMBER,
     MIN_STATIONS,
     FlightCondition,
     InitialGuess,
@@ -90,6 +91,7 @@ __all__ = [
     "FINDING_CODES",
     "FLIGHT_RULE",
     "ISA_SEA_LEVEL_DENSITY",
+    "MAX_CAMBER",
     "MIN_STATIONS",
     "OPERATIONS",
     "airspeed_sweep",

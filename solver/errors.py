@@ -25,9 +25,12 @@ class InvalidInput(ValueError):
     """
 
     def __init__(self, field: str, reason: str) -> None:
-        super().__init__(f"{field}: {reason}")
+        super().__init__(f"{field}: {reason}" if field else reason)
         self.field = field
         self.reason = reason
+
+    def __reduce__(self) -> tuple[type, tuple[str, str]]:
+        return type(self), (self.field, self.reason)
 
 
 class SolverError(Exception):
@@ -54,6 +57,9 @@ class ConvergenceError(SolverError):
             f"after {iterations} Newton iterations (residual {residual_norm:.3g})"
         )
 
+    def __reduce__(self) -> tuple[type, tuple[float, int, float, str]]:
+        return type(self), (self.velocity, self.iterations, self.residual_norm, self.reason)
+
 
 class NoEquilibrium(SolverError):
     """No statically stable equilibrium exists on the branch from the jig shape at this airspeed.
@@ -77,6 +83,7 @@ class NoEquilibrium(SolverError):
         self.velocity = velocity
         self.fold_velocity = fold_velocity
         self.detail = detail
+        self.where = where
         if where is None:
             where = (
                 f"beyond the fold of the equilibrium branch at {fold_velocity:.6g} m/s"
@@ -85,6 +92,9 @@ class NoEquilibrium(SolverError):
             )
         message = f"no static aeroelastic equilibrium at V = {velocity:g} m/s: {where}"
         super().__init__(message + (f" ({detail})" if detail else ""))
+
+    def __reduce__(self) -> tuple[type, tuple[float, float | None, str, str | None]]:
+        return type(self), (self.velocity, self.fold_velocity, self.detail, self.where)
 
 
 class InfeasibleDesign(SolverError):
@@ -104,6 +114,9 @@ class InfeasibleDesign(SolverError):
         self.detail = detail
         self.violation = violation
         super().__init__(f"no feasible optimum: {constraint}: {detail}")
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, float | None]]:
+        return type(self), (self.constraint, self.detail, self.violation)
 
 
 @contextlib.contextmanager

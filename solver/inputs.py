@@ -146,7 +146,8 @@ class Wing:
         "m",
         "spanwise station positions from the root: a list with y[0] = 0, strictly increasing, "
         f"its last (the semispan) at least {MIN_SEMISPAN}, each gap at least {MIN_SPACING:g} of "
-        "the semispan; or {semispan, stations} for evenly spaced ones",
+        "the semispan; or {semispan, stations} for evenly spaced ones. N stations, "
+        f"{MIN_STATIONS} <= N <= FLEXWING_MAX_STATIONS (default 150)",
         ge=0.0,
         le=1000.0,
         why="a semispan of up to 1 km",
@@ -178,6 +179,7 @@ class Wing:
         le=1e12,
         why="a foam model wing to a steel bridge",
         per_station=True,
+        default=None,
     )
     torsional_stiffness: np.ndarray = parameter(
         "N m^2",
@@ -186,6 +188,7 @@ class Wing:
         le=1e12,
         why="a foam model wing to a steel bridge",
         per_station=True,
+        default=None,
     )
     spar: TubeSpar | None = parameter(
         "",

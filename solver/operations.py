@@ -93,7 +93,8 @@ class SweepInput:
     )
     velocities: tuple[float, ...] | VelocityRange = parameter(
         "m/s",
-        "airspeeds, answered in this order: a list or {start, stop, count}",
+        "airspeeds, each from 0.01 to 1000, answered in this order: a list (1 to "
+        "FLEXWING_MAX_SWEEP_POINTS values, default 50) or {start, stop, count}",
         form="velocities",
         given=VelocityRange,
         example=[6.0, 10.0, 12.0, 15.0, 18.0, 20.0],
@@ -124,7 +125,8 @@ class SweepInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest(self)
+        """The same airspeeds given as a list or as a range are one sweep."""
+        return fields.digest((self.wing, self.flight, self.airspeeds, self.options))
 
     def run(self) -> AirspeedSweep:
         return airspeed_sweep(self.wing, self.airspeeds, self.flight, self.modelled)

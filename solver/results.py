@@ -463,6 +463,8 @@ class AirspeedPoint:
 
 @dataclass(frozen=True)
 class AirspeedSweepInfo:
+    """How the sweep was obtained."""
+
     seconds: float = quantity("s", "solver time")
 
 

@@ -30,10 +30,10 @@ from typing import Any
 
 from app.jobs import store
 from app.jobs.models import FINISHED_STATES, JOB_STATES
-from app.jobs.operations import OPERATIONS, Operation, problem_body
+from app.jobs.operations import OPERATIONS, Operation
 from app.jobs.store import JobRow, JobStore, OwnerLock
 from app.metrics import Metrics
-from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType
+from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType, problem_body
 from app.service import Service
 from app.settings import Settings
 

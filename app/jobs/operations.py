@@ -4,7 +4,7 @@ Adding one (as ``optimize`` below) is a few lines, before
 `app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
 
     async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
-        payload = await context.service.optimize(request)
+        payload = await context.service.answer("optimize", request)
         return OptimizeResponse.model_validate(payload).model_dump_json()
 
     register(Operation(
@@ -25,9 +25,8 @@ from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 from pydantic import BaseModel, Discriminator, Field, Tag, create_model
 from pydantic.json_schema import SkipJsonSchema
 
-from app.inputs import optimize_input, solve_input, station_limit_errors, sweep_input
 from app.jobs.models import BatchRequest, Request
-from app.problems import FieldError, Problem
+from app.problems import FieldError, Problem, problem_body
 from app.schemas import (
     OptimizeRequest,
     OptimizeResponse,
@@ -36,10 +35,11 @@ from app.schemas import (
     SweepRequest,
     SweepResponse,
 )
-from app.service import Service
+from app.schemas.limits import station_and_point_errors
+from app.service import Service, task_of
 from app.settings import Settings
 
-__all__ = ["OPERATIONS", "JobContext", "Operation", "problem_body", "register", "submission_type"]
+__all__ = ["OPERATIONS", "JobContext", "Operation", "register", "submission_type"]
 
 T = TypeVar("T")
 
@@ -92,17 +92,6 @@ def register(operation: Operation) -> None:
     OPERATIONS[operation.name] = operation
 
 
-def problem_body(problem: Problem) -> dict[str, Any]:
-    """A problem as the JSON body `app.problems.problem_response` sends (without `instance`)."""
-    return {
-        "type": problem.type.uri,
-        "title": problem.type.title,
-        "status": problem.status,
-        "detail": problem.detail,
-        **problem.extensions,
-    }
-
-
 # ---------------------------------------------------------------------------- solve, sweep
 
 
@@ -121,30 +110,22 @@ async def patiently(call: Callable[[], Awaitable[T]]) -> T:
 
 
 async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
-    payload = await patiently(lambda: context.service.optimize(request))
+    payload = await patiently(lambda: context.service.answer("optimize", request))
     return OptimizeResponse.model_validate(payload).model_dump_json()
 
 
-def _check_optimize(request: OptimizeRequest, settings: Settings) -> None:
-    optimize_input(request, settings)
-
-
 async def _run_solve(context: JobContext, request: SolveRequest) -> str:
-    payload = await patiently(lambda: context.service.solve(request))
+    payload = await patiently(lambda: context.service.answer("solve", request))
     return SolveResponse.model_validate(payload).model_dump_json()
 
 
 async def _run_sweep(context: JobContext, request: SweepRequest) -> str:
-    payload = await patiently(lambda: context.service.sweep(request))
+    payload = await patiently(lambda: context.service.answer("sweep", request))
     return SweepResponse.model_validate(payload).model_dump_json()
 
 
-def _check_solve(request: SolveRequest, settings: Settings) -> None:
-    solve_input(request, settings)  # raises the endpoint's invalid-input problem
-
-
-def _check_sweep(request: SweepRequest, settings: Settings) -> None:
-    sweep_input(request, settings)
+def _check(request: Any, settings: Settings) -> None:
+    task_of(request, settings)  # raises the endpoint's invalid-input problem
 
 
 def _sweep_points(request: SweepRequest) -> int:
@@ -165,7 +146,7 @@ def _check_batch(request: BatchRequest, settings: Settings) -> None:
     errors = [
         FieldError(f"items[{index}].{error.field}", error.reason)
         for index, item in enumerate(request.items)
-        for error in station_limit_errors(item, settings)
+        for error in station_and_point_errors(item, settings)
     ]
     if errors:
         raise Problem.invalid(errors)
@@ -174,7 +155,7 @@ def _check_batch(request: BatchRequest, settings: Settings) -> None:
 async def answer_item(context: JobContext, index: int, request: SolveRequest) -> tuple[bool, str]:
     """(ok, NDJSON line) of one batch item: its /solve response or its problem."""
     try:
-        payload = await patiently(lambda: context.service.solve(request))
+        payload = await patiently(lambda: context.service.answer("solve", request))
     except Problem as problem:
         body = json.dumps(problem_body(problem), allow_nan=False)
         return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
@@ -204,7 +185,7 @@ register(
         request_model=SolveRequest,
         request_description="A POST /solve body.",
         units=lambda request: 1,
-        check=_check_solve,
+        check=_check,
         run=_run_solve,
     )
 )
@@ -215,7 +196,7 @@ register(
         request_model=SweepRequest,
         request_description="A POST /sweep body.",
         units=_sweep_points,
-        check=_check_sweep,
+        check=_check,
         run=_run_sweep,
     )
 )
@@ -226,7 +207,7 @@ register(
         request_model=OptimizeRequest,
         request_description="A POST /optimize body.",
         units=lambda request: 1,
-        check=_check_optimize,
+        check=_check,
         run=_run_optimize,
     )
 )

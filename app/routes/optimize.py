@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body, Request
+from fastapi import APIRouter, Body
 
+from app.routes.deps import ServiceDep
 from app.routes.responses import OPTIMIZE_ERRORS
 from app.schemas import OPTIMIZE_EXAMPLES, OptimizeRequest, OptimizeResponse
 
@@ -22,7 +23,7 @@ router = APIRouter(tags=["design"])
     summary="Optimal jig twist (and spar wall) of a flexible wing carrying a lift",
 )
 async def optimize(
-    body: Annotated[OptimizeRequest, Body(openapi_examples=OPTIMIZE_EXAMPLES)], request: Request
+    body: Annotated[OptimizeRequest, Body(openapi_examples=OPTIMIZE_EXAMPLES)], service: ServiceDep
 ) -> Any:
     """Minimises the deformed wing's induced drag (near field or Trefftz plane) or its spar's
     mass while it carries the lift, by IPOPT on exact gradients of the coupled equilibrium.
@@ -32,4 +33,4 @@ async def optimize(
     optimum: 422 `/problems/infeasible-design` naming the constraint. Long problems can run as
     jobs (`POST /jobs` with operation `optimize`).
     """
-    return await request.app.state.service.optimize(body)
+    return await service.answer("optimize", body)

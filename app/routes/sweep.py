@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body, Request
+from fastapi import APIRouter, Body
 
+from app.routes.deps import ServiceDep
 from app.routes.responses import SWEEP_ERRORS
 from app.schemas import SWEEP_EXAMPLES, SweepRequest, SweepResponse
 
@@ -22,7 +23,7 @@ router = APIRouter(tags=["equilibrium"])
     summary="Equilibria of a wing over airspeeds, and its torsional divergence",
 )
 async def sweep(
-    body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)], request: Request
+    body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)], service: ServiceDep
 ) -> Any:
     """Solves the airspeeds, answered in the given order, each on its own.
 
@@ -37,4 +38,4 @@ async def sweep(
     ends), each null with a reason when it does not exist; `validity` says from which airspeed
     on each finding about the points appears.
     """
-    return await request.app.state.service.sweep(body)
+    return await service.answer("sweep", body)

@@ -10,8 +10,8 @@ from typing import Any
 
 import pytest
 
+from app.execution.pool import BudgetExceeded, Capacity, WorkerPool
 from app.metrics import Metrics
-from app.pool import Capacity, SolveTimeout, WorkerPool
 from app.settings import Settings
 from tests.app import pool_jobs
 
@@ -91,7 +91,7 @@ def _with_pool(settings: Settings, scenario: Callable[[WorkerPool], Awaitable[An
     return asyncio.run(run())
 
 
-LOCAL = Settings(workers=1, jobs_per_worker=2, warm_stations=[], start_method="forkserver")
+LOCAL = Settings(workers=1, tasks_per_worker=2, warm_stations=[], start_method="forkserver")
 
 
 def test_a_job_queued_behind_another_has_its_budget_counted_from_its_own_start() -> None:
@@ -113,7 +113,7 @@ def test_a_job_queued_behind_another_has_its_budget_counted_from_its_own_start()
 def test_a_job_past_its_budget_times_out_and_its_worker_is_replaced() -> None:
     async def scenario(pool: WorkerPool) -> tuple[list[int], list[int]]:
         before = pool.pids()
-        with pytest.raises(SolveTimeout):
+        with pytest.raises(BudgetExceeded):
             await pool.run(pool_jobs.sleep_then_pid, 30.0, timeout=0.3, kind="solve")
         assert await pool.wait_ready(timeout=60)
         after = await pool.run(pool_jobs.sleep_then_pid, 0.0, timeout=5.0, kind="solve")

@@ -1,11 +1,12 @@
-"""Jobs on a dask.distributed cluster (FLEXWING_EXECUTOR=dask, FLEXWING_DASK_SCHEDULER=tcp://...).
+"""Tasks on a dask.distributed cluster (FLEXWING_EXECUTOR=dask, FLEXWING_DASK_SCHEDULER=tcp://...).
 
-The service is a Dask client (asynchronous, on its own event loop). Every solve is one Dask task
-running the same worker function as the local pool (`app.worker.run_solve`, `run_sweep`), so a
-request gets the same answer wherever it runs. Dask workers need flexwing installed (they import
-`app.worker` and `solver`); each builds or loads the solver model of a mesh size on first use and
-keeps it, and compiled libraries are shared through FLEXWING_CACHE_DIR when every worker sees the
-same directory (the first worker compiles, the others load its library).
+The service is a Dask client (asynchronous, on its own event loop). Every task (a solve, a
+sweep, a design) is one Dask task running the same worker function as the local pool
+(`app.execution.worker.run`), so a request gets the same answer wherever it runs. Dask workers
+need flexwing installed (they import `app.execution.worker` and `solver`); each builds or loads
+the solver model of a mesh size on first use and keeps it, and compiled libraries are shared
+through FLEXWING_CACHE_DIR when every worker sees the same directory (the first worker
+compiles, the others load its library).
 
 The cluster is watched every `_WATCH_INTERVAL` s: a worker that joins gets a warm-up task pinned to
 it (`worker.warm`, the warm mesh sizes), one that leaves is forgotten. Dask batches its messages
@@ -35,9 +36,9 @@ import distributed
 from distributed import Client, KilledWorker
 from distributed.client import FutureCancelledError
 
-from app import worker
+from app.execution import worker
+from app.execution.pool import BudgetExceeded, Capacity, ClusterWorkerInfo, NotReady, WorkerDied
 from app.metrics import Metrics
-from app.pool import Capacity, ClusterWorkerInfo, NotReady, SolveTimeout, WorkerDied
 from app.settings import Settings
 
 __all__ = ["DaskWorkers"]
@@ -119,7 +120,7 @@ class DaskWorkers:
 
     async def close(self) -> None:
         self._closing = True
-        self._ready.set()  # wakes jobs waiting for a worker: they see `_closing`
+        self._ready.set()  # wakes tasks waiting for a worker: they see `_closing`
         self._slots.resize(1 << 30)
         for task in (self._watching, *self._background):
             if task is not None:
@@ -207,12 +208,12 @@ class DaskWorkers:
 
     # --------------------------------------------------------------------------- running
 
-    async def attempt(self, fn: Callable[[Any], T], job: Any, timeout: float) -> T:
+    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._client is None:
                 raise NotReady("the service is shutting down")
-            future = self._client.submit(fn, job, pure=False)
+            future = self._client.submit(fn, task, pure=False)
             return await self._outcome(future, timeout)
 
     async def _outcome(self, future: Any, timeout: float) -> Any:
@@ -221,7 +222,7 @@ class DaskWorkers:
         except TimeoutError:
             self._spawn(self._restart_worker_of(future.key))
             self._spawn(future.cancel())
-            raise SolveTimeout(timeout) from None
+            raise BudgetExceeded(timeout) from None
         except (KilledWorker, FutureCancelledError, OSError) as error:
             raise WorkerDied(f"{type(error).__name__}: {error}") from None
 

@@ -6,15 +6,15 @@ one-way `Pipe`). A reader thread per worker waits on the outbox and on the proce
 (`multiprocessing.connection.wait`) and hands every message to the event loop. A worker says
 
     ("warm", WarmReport)         once, after compiling or loading the warm mesh sizes;
-    ("started", seq)             when it begins job `seq` (its time budget starts here);
-    ("done", seq, ok, value)     with the job's result, or the exception it raised.
+    ("started", seq)             when it begins task `seq` (its time budget starts here);
+    ("done", seq, ok, value)     with the task's result, or the exception it raised.
 
-When its outbox ends (EOF) and the process has exited, the worker is gone: its jobs fail with
+When its outbox ends (EOF) and the process has exited, the worker is gone: its tasks fail with
 `WorkerDied` (the one it was running, if it died on its own) or `Collateral` (queued ones, and
 those of workers this pool ended itself), and the pool is replaced as a whole: a new generation
-of workers is started and warmed, the survivors of the old one are ended with SIGTERM. A job past
-its budget gets `SolveTimeout` and its worker is killed (SIGKILL), which replaces the generation
-the same way (its other jobs are collateral, resubmitted for free by `app.pool`).
+of workers is started and warmed, the survivors of the old one are ended with SIGTERM. A task past
+its budget gets `BudgetExceeded` and its worker is killed (SIGKILL), which replaces the generation
+the same way (its other tasks are collateral, resubmitted for free by `app.execution.pool`).
 """
 
 from __future__ import annotations
@@ -34,17 +34,17 @@ from multiprocessing.process import BaseProcess
 from multiprocessing.queues import Queue
 from typing import Any, TypeVar
 
-from app import worker
-from app.metrics import Metrics
-from app.pool import (
+from app.execution import worker
+from app.execution.pool import (
     THREAD_VARIABLES,
+    BudgetExceeded,
     Capacity,
     ClusterWorkerInfo,
     Collateral,
     NotReady,
-    SolveTimeout,
     WorkerDied,
 )
+from app.metrics import Metrics
 from app.settings import Settings
 
 __all__ = ["LocalWorkers", "serve"]
@@ -66,20 +66,20 @@ def serve(
     warm_stations: tuple[int, ...],
     warmup_timeout: float,
 ) -> None:
-    """A worker's life: warm up, then run jobs from the inbox until told to stop (None)."""
+    """A worker's life: warm up, then run tasks from the inbox until told to stop (None)."""
     # Ctrl-C in a terminal reaches the whole process group: the service decides when we stop.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     outbox.send(("warm", worker.warm(warm_stations, warmup_timeout)))
     while (message := inbox.get()) is not None:
-        seq, fn, job = pickle.loads(message)
+        seq, fn, task = pickle.loads(message)
         outbox.send(("started", seq))
-        outbox.send_bytes(_outcome(seq, fn, job))
+        outbox.send_bytes(_outcome(seq, fn, task))
 
 
-def _outcome(seq: int, fn: Callable[[Any], Any], job: Any) -> bytes:
-    """The pickled ("done", seq, ok, value) message of one job; an unpicklable error as text."""
+def _outcome(seq: int, fn: Callable[[Any], Any], task: Any) -> bytes:
+    """The pickled ("done", seq, ok, value) message of one task; an unpicklable error as text."""
     try:
-        value, ok = fn(job), True
+        value, ok = fn(task), True
     except Exception as error:
         value, ok = error, False
     try:
@@ -94,7 +94,7 @@ def _outcome(seq: int, fn: Callable[[Any], Any], job: Any) -> bytes:
 
 @dataclass(eq=False)
 class _Dispatch:
-    """A job handed to a worker; `started` is the event loop's time when the worker began it."""
+    """A task handed to a worker; `started` is the event loop's time when the worker began it."""
 
     seq: int
     future: asyncio.Future[Any]
@@ -125,7 +125,7 @@ class LocalWorkers:
         self.settings = settings
         self.metrics = metrics
         self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(settings.workers * settings.jobs_per_worker)
+        self._slots = Capacity(settings.workers * settings.tasks_per_worker)
         self._workers: list[_Worker] = []
         self._generation = 0
         self._seq = 0
@@ -180,7 +180,7 @@ class LocalWorkers:
         self._context = multiprocessing.get_context(self.settings.start_method)
         if self.settings.start_method == "forkserver":
             # New workers fork from a server that has already imported solver and casadi.
-            self._context.set_forkserver_preload(["app.worker_processes"])
+            self._context.set_forkserver_preload(["app.execution.processes"])
         self._spawn_generation()
 
     def _spawn_generation(self) -> None:
@@ -212,7 +212,7 @@ class LocalWorkers:
     async def close(self) -> None:
         """Let every worker finish what it holds (a few seconds at most), then end it."""
         self._closing = True
-        self._ready.set()  # wakes jobs waiting for a warm pool: they see `_closing`
+        self._ready.set()  # wakes tasks waiting for a warm pool: they see `_closing`
         workers = self._workers
         for w in workers:
             with contextlib.suppress(Exception):
@@ -297,7 +297,7 @@ class LocalWorkers:
     def _on_done(w: _Worker, seq: int, ok: bool, value: Any) -> None:
         dispatch = w.assigned.pop(seq, None)
         if dispatch is None or dispatch.future.done():
-            return  # its caller gave up (a timeout, a cancelled job)
+            return  # its caller gave up (a timeout, a cancelled task)
         if ok:
             dispatch.future.set_result(value)
         else:
@@ -305,7 +305,7 @@ class LocalWorkers:
 
     def _on_exit(self, w: _Worker, exitcode: int | None) -> None:
         w.exited = True
-        # A job is collateral if it never started, or its worker was ended by the pool (SIGTERM)
+        # A task is collateral if it never started, or its worker was ended by the pool (SIGTERM)
         # because another one died; a worker killed from outside shows SIGKILL.
         ended_by_us = w.ended_by_pool and exitcode == -signal.SIGTERM
         for dispatch in w.assigned.values():
@@ -324,7 +324,7 @@ class LocalWorkers:
 
     def _replace(self, reason: str, victim: _Worker | None = None) -> None:
         """Start a new generation of workers and end the current one (`victim` with SIGKILL,
-        the others with SIGTERM, so the jobs they were running count as collateral)."""
+        the others with SIGTERM, so the tasks they were running count as collateral)."""
         if self._closing:
             return
         old = self._workers
@@ -334,7 +334,7 @@ class LocalWorkers:
         self._ready.clear()
         self.metrics.ready.set(0)
         self._workers = []
-        self._generation += 1  # jobs wait for the next generation from now on
+        self._generation += 1  # tasks wait for the next generation from now on
         for w in old:
             self._end(w, kill=w is victim)
         if never_warm:
@@ -357,14 +357,14 @@ class LocalWorkers:
 
     # --------------------------------------------------------------------------- running
 
-    async def attempt(self, fn: Callable[[Any], T], job: Any, timeout: float) -> T:
-        """Run `fn(job)` once in the least busy worker, within `timeout` s of its start."""
+    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
+        """Run `fn(task)` once in the least busy worker, within `timeout` s of its start."""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing:
                 raise NotReady("the service is shutting down")
             w = self._least_busy()
-            dispatch = self._hand_over(w, fn, job)
+            dispatch = self._hand_over(w, fn, task)
             return await self._outcome(w, dispatch, timeout)  # type: ignore[no-any-return]
 
     def _least_busy(self) -> _Worker:
@@ -373,12 +373,12 @@ class LocalWorkers:
             raise Collateral("the worker pool is being replaced")
         return min(alive, key=lambda w: len(w.assigned))
 
-    def _hand_over(self, w: _Worker, fn: Callable[[Any], Any], job: Any) -> _Dispatch:
+    def _hand_over(self, w: _Worker, fn: Callable[[Any], Any], task: Any) -> _Dispatch:
         assert self._loop is not None
         self._seq += 1
-        message = pickle.dumps((self._seq, fn, job))  # here: a bad job fails its own request
+        message = pickle.dumps((self._seq, fn, task))  # here: a bad task fails its own request
         dispatch = _Dispatch(self._seq, self._loop.create_future())
-        # Its caller may be gone when it fails (a timeout, a cancelled job): nobody must care.
+        # Its caller may be gone when it fails (a timeout, a cancelled task): nobody must care.
         dispatch.future.add_done_callback(lambda f: f.cancelled() or f.exception())
         w.assigned[self._seq] = dispatch
         try:
@@ -389,9 +389,9 @@ class LocalWorkers:
         return dispatch
 
     async def _outcome(self, w: _Worker, dispatch: _Dispatch, timeout: float) -> Any:
-        """The job's result, or SolveTimeout once it has run `timeout` seconds.
+        """The task's result, or BudgetExceeded once it has run `timeout` seconds.
 
-        A job still queued behind another in its worker waits on: the job ahead has a budget of
+        A task still queued behind another in its worker waits on: the task ahead has a budget of
         its own, and this one's starts when the worker begins it.
         """
         assert self._loop is not None
@@ -412,4 +412,4 @@ class LocalWorkers:
                 dispatch.future.cancel()
                 if w.generation == self._generation and not w.exited:
                     self._replace("timeout", victim=w)
-                raise SolveTimeout(timeout) from None
+                raise BudgetExceeded(timeout) from None

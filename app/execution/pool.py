@@ -1,23 +1,24 @@
 """The worker pool: solves run in other processes (or on other machines), never on the event loop.
 
-`WorkerPool` is what the service talks to. It admits work (at most `max_pending` jobs running or
-waiting, beyond that `Overloaded`), retries a job whose worker died under it (once, setting
-`retry_on_worker_loss`; a job that was only collateral damage of another worker's death is
-resubmitted without spending that retry), and reports readiness. Where jobs run is a backend,
+`WorkerPool` is what the service talks to. It admits work (at most `max_pending` tasks running or
+waiting, beyond that `Overloaded`), retries a task whose worker died under it (once, setting
+`retry_on_worker_loss`; a task that was only collateral damage of another worker's death is
+resubmitted without spending that retry), and reports readiness. Where tasks run is a backend,
 chosen by `FLEXWING_EXECUTOR`:
 
-- ``process`` (default): `app.worker_processes.LocalWorkers`, worker processes this service starts
-  and owns (multiprocessing processes with a pipe each way): warm-up before ready, at most
-  `jobs_per_worker` jobs handed to a worker at once, a time budget counted from the job's start in
-  its worker (past it: `SolveTimeout` and the worker is killed), a dead worker detected at once.
-- ``dask``: `app.dask_executor.DaskWorkers`, a dask.distributed cluster at
+- ``process`` (default): `app.execution.processes.LocalWorkers`, worker processes this service
+  starts and owns (multiprocessing processes with a pipe each way): warm-up before ready, at
+  most `tasks_per_worker` tasks handed to a worker at once, a time budget counted from the
+  task's start in its worker (past it: `BudgetExceeded` and the worker is killed), a dead worker
+  detected at once.
+- ``dask``: `app.execution.dask_cluster.DaskWorkers`, a dask.distributed cluster at
   `FLEXWING_DASK_SCHEDULER`.
-- ``module:callable``: `app.executor_workers.ExecutorWorkers` over any
+- ``module:callable``: `app.execution.executor.ExecutorWorkers` over any
   `concurrent.futures.Executor` the callable returns (given the Settings).
 
-Backends raise `WorkerDied` for a job whose worker died while running it and `Collateral` for a job
-that never ran or was stopped because another worker died; only this module turns them into
-retries or `WorkerLost`.
+Backends raise `WorkerDied` for a task whose worker died while running it and `Collateral` for a
+task that never ran or was stopped because another worker died; only this module turns them
+into retries or `WorkerLost`.
 """
 
 from __future__ import annotations
@@ -44,7 +45,7 @@ __all__ = [
     "NotReady",
     "Overloaded",
     "PoolError",
-    "SolveTimeout",
+    "BudgetExceeded",
     "WorkerDied",
     "WorkerLost",
     "WorkerPool",
@@ -56,12 +57,12 @@ T = TypeVar("T")
 
 # Threads of numerical libraries per worker: the pool is the parallelism.
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
-# Free resubmissions of a job that was only collateral damage, before it counts as lost.
+# Free resubmissions of a task that was only collateral damage, before it counts as lost.
 _FREE_RESUBMISSIONS = 4
 
 
 class PoolError(Exception):
-    """A job could not be run; the subclasses say why."""
+    """A task could not be run; the subclasses say why."""
 
 
 class Overloaded(PoolError):
@@ -76,18 +77,18 @@ class WorkerLost(PoolError):
     pass
 
 
-class SolveTimeout(PoolError):
+class BudgetExceeded(PoolError):
     def __init__(self, timeout: float) -> None:
-        super().__init__(f"the job ran longer than its budget of {timeout:g} s")
+        super().__init__(f"the task ran longer than its budget of {timeout:g} s")
         self.timeout = timeout
 
 
 class WorkerDied(PoolError):
-    """Backend to pool: the worker running this job died while running it."""
+    """Backend to pool: the worker running this task died while running it."""
 
 
 class Collateral(PoolError):
-    """Backend to pool: the job never ran, or was stopped because another worker died."""
+    """Backend to pool: the task never ran, or was stopped because another worker died."""
 
 
 @dataclass(frozen=True)
@@ -151,14 +152,14 @@ class Capacity:
 
 
 class Backend(Protocol):
-    """Where jobs run. `attempt` runs one job once (see the module docstring for its errors)."""
+    """Where tasks run. `attempt` runs one task once (see the module docstring for its errors)."""
 
     @property
     def ready(self) -> bool: ...
 
     @property
     def started(self) -> bool:
-        """Has been ready at least once (until then a job is refused with `NotReady`)."""
+        """Has been ready at least once (until then a task is refused with `NotReady`)."""
         ...
 
     @property
@@ -166,14 +167,14 @@ class Backend(Protocol):
 
     @property
     def capacity(self) -> int:
-        """Jobs it runs or holds at once (workers x jobs_per_worker)."""
+        """Tasks it runs or holds at once (workers x tasks_per_worker)."""
         ...
 
     async def start(self) -> None: ...
 
     async def wait_ready(self) -> None: ...
 
-    async def attempt(self, fn: Callable[[Any], T], job: Any, timeout: float) -> T: ...
+    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T: ...
 
     async def close(self) -> None: ...
 
@@ -203,10 +204,10 @@ def _load_factory(path: str) -> Callable[[Settings], Executor]:
 # FLEXWING_EXECUTOR names -> backend classes, loaded by name: each pulls in its own libraries
 # (Dask's only when it is used), and each imports this module (its errors), not the reverse.
 BACKENDS = {
-    "process": "app.worker_processes:LocalWorkers",
-    "dask": "app.dask_executor:DaskWorkers",
+    "process": "app.execution.processes:LocalWorkers",
+    "dask": "app.execution.dask_cluster:DaskWorkers",
 }
-EXECUTOR_BACKEND = "app.executor_workers:ExecutorWorkers"  # for FLEXWING_EXECUTOR=module:callable
+EXECUTOR_BACKEND = "app.execution.executor:ExecutorWorkers"  # for FLEXWING_EXECUTOR=module:callable
 
 
 def make_backend(settings: Settings, metrics: Metrics) -> Backend:
@@ -250,11 +251,11 @@ class WorkerPool:
 
     @property
     def capacity(self) -> int:
-        """Jobs the workers run or hold at once: what keeps them all busy."""
+        """Tasks the workers run or hold at once: what keeps them all busy."""
         return max(1, self.backend.capacity if self.backend is not None else 1)
 
     def running(self) -> int:
-        """Jobs running in workers now (started, not yet collected)."""
+        """Tasks running in workers now (started, not yet collected)."""
         return 0 if self.backend is None else self.backend.running()
 
     def pids(self) -> list[int]:
@@ -285,23 +286,23 @@ class WorkerPool:
 
     # --------------------------------------------------------------------------- running
 
-    async def run(self, fn: Callable[[Any], T], job: Any, *, timeout: float, kind: str) -> T:
-        """Run `fn(job)` in a worker within `timeout` seconds of its start."""
+    async def run(self, fn: Callable[[Any], T], task: Any, *, timeout: float, kind: str) -> T:
+        """Run `fn(task)` in a worker within `timeout` seconds of its start."""
         if self.backend is None or not self.backend.started or self._closing:
             raise NotReady(self.detail)
         if self._pending >= self.settings.max_pending:
             self.metrics.shed.inc()
-            raise Overloaded(f"{self._pending} jobs are already running or waiting")
+            raise Overloaded(f"{self._pending} tasks are already running or waiting")
         self._pending += 1
         self.metrics.pending.set(self._pending)
         try:
-            return await self._run_with_retries(self.backend, fn, job, timeout, kind)
+            return await self._run_with_retries(self.backend, fn, task, timeout, kind)
         finally:
             self._pending -= 1
             self.metrics.pending.set(self._pending)
 
     async def _run_with_retries(
-        self, backend: Backend, fn: Callable[[Any], T], job: Any, timeout: float, kind: str
+        self, backend: Backend, fn: Callable[[Any], T], task: Any, timeout: float, kind: str
     ) -> T:
         """One attempt, one more if its worker died (setting), free ones for collateral."""
         attempts = 2 if self.settings.retry_on_worker_loss else 1
@@ -310,8 +311,8 @@ class WorkerPool:
             if self._closing:
                 raise NotReady("the service is shutting down")
             try:
-                return await backend.attempt(fn, job, timeout)
-            except SolveTimeout:
+                return await backend.attempt(fn, task, timeout)
+            except BudgetExceeded:
                 self.metrics.solves.labels(kind, "timeout").inc()
                 raise
             except Collateral:

@@ -1,10 +1,10 @@
-"""Jobs on any `concurrent.futures.Executor` (FLEXWING_EXECUTOR=module:callable).
+"""Tasks on any `concurrent.futures.Executor` (FLEXWING_EXECUTOR=module:callable).
 
-The callable takes the Settings and returns the executor. Warm-up is one `worker.warm` job per
+The callable takes the Settings and returns the executor. Warm-up is one `worker.warm` task per
 configured worker. The executor owns its workers, so this backend cannot see their start times nor
-kill them: a job's time budget counts from its submission, and a job past it gets `SolveTimeout`
-while it runs on to its end. An executor that breaks (`BrokenExecutor`) or drops a job fails that
-job with `WorkerDied`.
+kill them: a task's time budget counts from its submission, and a task past it gets `BudgetExceeded`
+while it runs on to its end. An executor that breaks (`BrokenExecutor`) or drops a task fails that
+task with `WorkerDied`.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from collections.abc import Callable
 from concurrent.futures import BrokenExecutor, Executor, Future
 from typing import Any, TypeVar
 
-from app import worker
-from app.pool import Capacity, ClusterWorkerInfo, NotReady, SolveTimeout, WorkerDied
+from app.execution import worker
+from app.execution.pool import BudgetExceeded, Capacity, ClusterWorkerInfo, NotReady, WorkerDied
 from app.settings import Settings
 
 __all__ = ["ExecutorWorkers"]
@@ -31,7 +31,7 @@ class ExecutorWorkers:
         self.settings = settings
         self.factory = factory
         self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(settings.workers * settings.jobs_per_worker)
+        self._slots = Capacity(settings.workers * settings.tasks_per_worker)
         self._executor: Executor | None = None
         self._in_flight: set[Future[Any]] = set()
         self._ready = asyncio.Event()
@@ -73,7 +73,7 @@ class ExecutorWorkers:
         self._warming = asyncio.create_task(self._warm(self._executor), name="flexwing-warm")
 
     async def _warm(self, executor: Executor) -> None:
-        """One warm job per configured worker."""
+        """One warm task per configured worker."""
         self._detail = f"warming {self.settings.workers} worker(s) for N = {self.warm_stations}"
         timeout = self.settings.warmup_timeout
         futures = [
@@ -82,7 +82,7 @@ class ExecutorWorkers:
         ]
         try:
             reports = await asyncio.gather(*futures)
-        except Exception as error:  # e.g. a remote executor that cannot run the job
+        except Exception as error:  # e.g. a remote executor that cannot run the task
             log.exception("warming the workers failed")
             self._detail = f"warm-up failed: {type(error).__name__}: {error}"
             return
@@ -100,15 +100,15 @@ class ExecutorWorkers:
             self._executor.shutdown(wait=False, cancel_futures=True)
         self._detail = "closed"
 
-    async def attempt(self, fn: Callable[[Any], T], job: Any, timeout: float) -> T:
+    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._executor is None:
                 raise NotReady("the service is shutting down")
             try:
-                future = self._executor.submit(fn, job)
+                future = self._executor.submit(fn, task)
             except (BrokenExecutor, RuntimeError) as error:
-                raise WorkerDied(f"the executor refuses jobs: {error}") from None
+                raise WorkerDied(f"the executor refuses tasks: {error}") from None
             self._in_flight.add(future)
             future.add_done_callback(self._in_flight.discard)
             return await self._outcome(future, timeout)
@@ -118,11 +118,11 @@ class ExecutorWorkers:
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), timeout)
         except TimeoutError:
-            raise SolveTimeout(timeout) from None
+            raise BudgetExceeded(timeout) from None
         except BrokenExecutor as error:
             raise WorkerDied(str(error)) from None
         except asyncio.CancelledError:
             task = asyncio.current_task()
             if future.cancelled() and not (task is not None and task.cancelling()):
-                raise WorkerDied("the executor dropped the job") from None
+                raise WorkerDied("the executor dropped the task") from None
             raise

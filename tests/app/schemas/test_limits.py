@@ -1,5 +1,6 @@
-"""app.inputs: a request's models become the solver's inputs, with the service's own limits
-(FLEXWING_MAX_STATIONS, FLEXWING_MAX_PANELS) checked on the way."""
+"""app.schemas.limits (through app.service.task_of): a request's model becomes the solver's
+input, with the service's own limits (FLEXWING_MAX_STATIONS, FLEXWING_MAX_PANELS,
+FLEXWING_MAX_SWEEP_POINTS) checked on the way."""
 
 from __future__ import annotations
 
@@ -8,8 +9,8 @@ import pytest
 from pydantic import ValidationError
 
 from app import schemas
-from app.inputs import solve_input, sweep_input
 from app.problems import Problem
+from app.service import task_of
 from app.settings import Settings
 from solver import Layout
 from tests import study
@@ -25,14 +26,14 @@ def _solve(n: int, k: int) -> schemas.SolveRequest:
     ("n", "k"), [(31, 8), (61, 4), (121, 2), (150, 1)], ids=["k8", "k4", "k2", "k1-n150"]
 )
 def test_a_lattice_of_at_most_240_panels_is_accepted(n: int, k: int) -> None:
-    inputs = solve_input(_solve(n, k), Settings())
-    assert inputs.wing.n_stations == n and inputs.options.chordwise_panels == k
+    inputs = task_of(_solve(n, k), Settings())
+    assert inputs.wing.n_stations == n and inputs.modelled.chordwise_panels == k
 
 
 @pytest.mark.parametrize(("n", "k"), [(32, 8), (62, 4), (122, 2)], ids=["k8", "k4", "k2"])
 def test_one_strip_more_is_refused_naming_the_chordwise_panels(n: int, k: int) -> None:
     with pytest.raises(Problem) as raised:
-        solve_input(_solve(n, k), Settings())
+        task_of(_solve(n, k), Settings())
     (error,) = raised.value.extensions["errors"]
     assert error["field"] == "options.chordwise_panels"
     assert f"{(n - 1) * k} panels" in error["reason"]
@@ -42,13 +43,13 @@ def test_one_strip_more_is_refused_naming_the_chordwise_panels(n: int, k: int) -
 def test_the_panel_limit_is_the_services_setting() -> None:
     settings = Settings(max_panels=100)
     with pytest.raises(Problem):
-        solve_input(_solve(30, 4), settings)  # 116 panels
+        task_of(_solve(30, 4), settings)  # 116 panels
     body = study.solve_request(10.0, options={"chordwise_panels": 4})
     body["velocities"] = [8.0, 10.0]
     body["flight"].pop("velocity")
     with pytest.raises(Problem):
-        sweep_input(schemas.SweepRequest.model_validate(body), settings)
-    assert solve_input(_solve(26, 4), settings).options.chordwise_panels == 4  # 100 panels
+        task_of(schemas.SweepRequest.model_validate(body), settings)
+    assert task_of(_solve(26, 4), settings).modelled.chordwise_panels == 4  # 100 panels
 
 
 @pytest.mark.parametrize(
@@ -88,7 +89,7 @@ def test_stations_are_refused_for_what_is_wrong_with_them(y: list[float], reason
     body = study.solve_request(10.0)
     body["wing"] = study.wing_json(n=4) | {"y": y}
     with pytest.raises(Problem) as raised:
-        solve_input(schemas.SolveRequest.model_validate(body), Settings())
+        task_of(schemas.SolveRequest.model_validate(body), Settings())
     (error,) = raised.value.extensions["errors"]
     assert error["field"] == "wing.y" and reason in error["reason"]
 
@@ -97,9 +98,11 @@ def test_stations_are_refused_for_what_is_wrong_with_them(y: list[float], reason
 def test_a_guessed_deformation_is_a_state_of_the_lattice_the_options_ask_for(k: int) -> None:
     body = study.solve_request(10.0, options={"chordwise_panels": k})
     body["initial_guess"] = {"heave": [0.001 * i for i in range(30)], "twist": [0.5] * 30}
-    inputs = solve_input(schemas.SolveRequest.model_validate(body), Settings())
+    inputs = task_of(schemas.SolveRequest.model_validate(body), Settings())
     layout = Layout(30, k)
-    assert inputs.initial_guess is not None and inputs.initial_guess.shape == (layout.n_unknowns,)
-    assert inputs.initial_guess[layout.heave][-1] == pytest.approx(0.029)
-    assert np.all(inputs.initial_guess[layout.twist] == 0.5)
-    assert np.all(inputs.initial_guess[layout.circulation] == 0.0)
+    assert inputs.initial_guess is not None
+    state = inputs.initial_guess.state(30, k)
+    assert state.shape == (layout.n_unknowns,)
+    assert state[layout.heave][-1] == pytest.approx(0.029)
+    assert np.all(state[layout.twist] == 0.5)
+    assert np.all(state[layout.circulation] == 0.0)

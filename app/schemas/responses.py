@@ -36,6 +36,8 @@ __all__ = [
 MODEL_NAMES = {
     "Equilibrium": "SolveResponse",
     "AirspeedSweep": "SweepResponse",
+    "AirspeedPoint": "SweepPoint",
+    "AirspeedSweepInfo": "SweepInfo",
     "SolveInfo": "SolverInfo",
     "DivergenceSummary": "Divergence",
     "PointFailure": "NoEquilibrium",

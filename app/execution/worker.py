@@ -1,0 +1,65 @@
+"""What runs inside a worker process: one function for every operation.
+
+A task is a solver operation input (`solver.SolveInput`, `SweepInput`, `OptimizeInput`: frozen
+dataclasses of numpy arrays and floats, validated before they left the service); `run` answers
+it with the JSON-ready payload of its result (`app.schemas.payload`), or with the solver's own
+typed error when there is no answer (`solver.SolverError`, or `InvalidInput` for an input the
+service's validation let through: a defect of that validation, still answered as that input's
+422). Solver errors pickle, so they cross the process boundary as they are; no CasADi object
+ever does: each process builds (or loads from the disk cache) the compiled functions of a mesh
+size once and keeps them in the solver's cache.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+from dataclasses import dataclass
+from typing import Any
+
+from app.schemas.responses import payload
+from solver import InvalidInput, SolverError, warm_up
+
+__all__ = ["Outcome", "WarmReport", "run", "warm"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """A task's answer: the payload of its result (a response body as a dict), or the error
+    that says why there is none."""
+
+    payload: dict[str, Any] | None
+    error: SolverError | InvalidInput | None = None
+
+
+@dataclass(frozen=True)
+class WarmReport:
+    pid: int
+    compiled: dict[int, bool]
+
+
+def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
+    """Compile or load the solver functions of the common mesh sizes in this worker (each one
+    waits up to `timeout` seconds) and report which are served compiled.
+
+    Never raises: a worker whose compilation failed still serves from CasADi's virtual machine.
+    """
+    compiled = {}
+    for n in warm_stations:
+        try:
+            compiled[n] = warm_up(n, timeout)
+        except Exception:
+            log.exception("warming N=%d failed; this worker uses CasADi's VM for it", n)
+            compiled[n] = False
+    return WarmReport(os.getpid(), compiled)
+
+
+def run(task: Any) -> Outcome:
+    """The answer to one operation input (`task.run()`), as data."""
+    try:
+        result = task.run()
+    except (SolverError, InvalidInput) as error:
+        return Outcome(None, error)
+    return Outcome(payload(result))

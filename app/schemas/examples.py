@@ -1,0 +1,140 @@
+"""The request examples of the OpenAPI document (what /docs pre-fills): the design study's wing
+(shared/seed, chapter 14), y = linspace(0, 5, 30) m, chord = sqrt(linspace(2, 0.02, 30)) m,
+elastic axis at 40 % chord, EI = 2e4 c^3, GJ = 1e3 c^3, at 10 m/s and alpha 5 deg; `/docs` runs
+them as they are."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from solver import ISA_SEA_LEVEL_DENSITY
+
+__all__ = [
+    "OPTIMIZE_EXAMPLES",
+    "SOLVE_EXAMPLES",
+    "STUDY_OPTIMIZE",
+    "STUDY_SOLVE",
+    "STUDY_SWEEP",
+    "STUDY_SWEEP_REQUEST",
+    "STUDY_WING",
+    "SWEEP_EXAMPLES",
+    "study_wing",
+]
+
+
+def _significant(x: float) -> float:
+    return float(f"{x:.10g}")
+
+
+def study_wing() -> dict[str, Any]:
+    """The design study's wing, to 10 significant digits."""
+    n = 30
+    y = [_significant(5.0 * i / (n - 1)) for i in range(n)]
+    chord = [math.sqrt(2.0 + (0.02 - 2.0) * i / (n - 1)) for i in range(n)]
+    return {
+        "y": y,
+        "chord": [_significant(c) for c in chord],
+        "elastic_axis": 0.4,
+        "bending_stiffness": [_significant(2e4 * c**3) for c in chord],
+        "torsional_stiffness": [_significant(1e3 * c**3) for c in chord],
+    }
+
+
+STUDY_WING = study_wing()
+STUDY_SWEEP: list[Any] = [6.0, 10.0, 12.0, 15.0, 18.0, 20.0]
+STUDY_SOLVE: dict[str, Any] = {
+    "wing": STUDY_WING,
+    "flight": {"velocity": 10.0, "alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+}
+STUDY_SWEEP_REQUEST: dict[str, Any] = {
+    "wing": STUDY_WING,
+    "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "velocities": STUDY_SWEEP,
+}
+STUDY_OPTIMIZE: dict[str, Any] = {
+    "wing": STUDY_WING,
+    "flight": {"velocity": 12.0, "weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "design": {"jig_twist": {"control_points": 6}},
+    "objective": "induced_drag",
+}
+# Request-body examples for the OpenAPI document (what /docs pre-fills).
+SOLVE_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The design study's wing at 10 m/s, alpha 5 deg",
+        "value": STUDY_SOLVE,
+    },
+    "beyond_divergence": {
+        "summary": "The same wing at 23 m/s: no equilibrium (422, with the fold speed)",
+        "value": STUDY_SOLVE | {"flight": STUDY_SOLVE["flight"] | {"velocity": 23.0}},
+    },
+    "at_its_weight": {
+        "summary": "The same wing trimmed to carry its 300 N at 12 m/s: alpha is solved for",
+        "value": STUDY_SOLVE
+        | {
+            "flight": {
+                "velocity": 12.0,
+                "weight": 300.0,
+                "load_factor": 1.0,
+                "density": ISA_SEA_LEVEL_DENSITY,
+            }
+        },
+    },
+    "tube_spar": {
+        "summary": "A carbon tube spar in NACA 0012 sections at its weight: stresses, margin, mass",
+        "value": {
+            "wing": {k: v for k, v in STUDY_WING.items() if not k.endswith("stiffness")}
+            | {
+                "airfoil": "naca0012",
+                "spar": {
+                    "outer_diameter": {"fraction_of_thickness": 0.8},
+                    "wall_thickness": 0.001,
+                    "material": {
+                        "youngs_modulus": 70e9,
+                        "shear_modulus": 27e9,
+                        "density": 1600.0,
+                        "yield_stress": 600e6,
+                    },
+                },
+            },
+            "flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 2.5},
+            "options": {"safety_factor": 1.5},
+        },
+    },
+    "pull_up": {
+        "summary": "A 2 g pull-up at 15 m/s: twice the lift",
+        "value": STUDY_SOLVE | {"flight": {"velocity": 15.0, "weight": 300.0, "load_factor": 2.0}},
+    },
+}
+SWEEP_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The design study's sweep: 6 to 20 m/s, alpha 5 deg",
+        "value": STUDY_SWEEP_REQUEST,
+    },
+    "to_the_fold": {
+        "summary": "Past the fold: 22 and 23 m/s have no equilibrium",
+        "value": STUDY_SWEEP_REQUEST | {"velocities": [10.0, 15.0, 20.0, 21.0, 22.0, 23.0]},
+    },
+    "at_its_weight": {
+        "summary": "The study's wing trimmed to its 300 N from 8 to 26 m/s: alpha per airspeed, "
+        "and the trimmed divergence limit",
+        "value": STUDY_SWEEP_REQUEST
+        | {
+            "flight": {"weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "velocities": [8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 24.0, 26.0],
+        },
+    },
+}
+
+
+OPTIMIZE_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The study's closing sketch: the jig twist of its wing carrying 300 N at 12 m/s",
+        "value": STUDY_OPTIMIZE,
+    },
+    "aerosandbox_reference": {
+        "summary": "The regularised sketch AeroSandbox solves: every station, penalty 0.01",
+        "value": STUDY_OPTIMIZE
+        | {"design": {"jig_twist": {"control_points": None}}, "smoothness_weight": 0.01},
+    },
+}
