@@ -16,35 +16,29 @@ of an instance that died without stopping (see `app.jobs.store`).
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import json
 import logging
 import secrets
-import signal
-import threading
 import time
-from collections.abc import AsyncIterator, Callable, Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from datetime import UTC, datetime
 from typing import Any
 
 from app.jobs import store
 from app.jobs.models import FINISHED_STATES, JOB_STATES
 from app.jobs.operations import OPERATIONS, Operation
+from app.jobs.signals import on_shutdown_signals
 from app.jobs.store import JobRow, JobStore, OwnerLock
 from app.metrics import Metrics
 from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType, problem_body
 from app.service import Service
 from app.settings import Settings
 
-__all__ = ["JobManager", "LiveJob", "job_view"]
+__all__ = ["JobManager", "LiveJob"]
 
 log = logging.getLogger(__name__)
 
 _PROGRESS_INTERVAL = 0.5  # [s] progress of a running job is written this often at most
-_EVENT_INTERVAL = 0.2  # [s] an event stream sends progress this often at most
-_KEEPALIVE = 15.0  # [s] an idle event stream sends a comment this often
-_STREAM_CHUNK = 500  # items read from the database at once when streaming
 
 PROBLEM_TYPES["job-interrupted"] = ProblemType(
     "job-interrupted",
@@ -59,37 +53,6 @@ PROBLEM_TYPES["job-conflict"] = ProblemType(
     409,
     "The job runs in another service process that shares the jobs database; cancel it there.",
 )
-
-
-def _iso(seconds: float | None) -> str | None:
-    """[s since the epoch] -> RFC 3339 in UTC."""
-    if seconds is None:
-        return None
-    return datetime.fromtimestamp(seconds, tz=UTC).isoformat().replace("+00:00", "Z")
-
-
-def job_view(row: Mapping[str, Any], operations: Mapping[str, Operation]) -> dict[str, Any]:
-    """A job (a database row or `LiveJob.row()`) as the API shows it, without its result."""
-    job_id = row["id"]
-    problem = row.get("problem")
-    operation = operations.get(row["operation"])
-    items = operation is not None and operation.has_items
-    return {
-        "id": job_id,
-        "operation": row["operation"],
-        "status": row["status"],
-        "progress": {"done": row["done"], "total": row["total"], "problems": row["problems"]},
-        "created_at": _iso(row["created"]),
-        "started_at": _iso(row["started"]),
-        "finished_at": _iso(row["finished"]),
-        "expires_at": _iso(row["expires"]),
-        "problem": json.loads(problem) if isinstance(problem, str) else problem,
-        "links": {
-            "self": f"/jobs/{job_id}",
-            "events": f"/jobs/{job_id}/events",
-            "items": f"/jobs/{job_id}/items.ndjson" if items else None,
-        },
-    }
 
 
 def _prefixed(problem: Problem, prefix: str) -> Problem:
@@ -122,7 +85,7 @@ class LiveJob:
     problem: dict[str, Any] | None = None
     task: asyncio.Task[None] | None = None
     cancel_requested: bool = False
-    principal: str = ""  # the API key that submitted it (app.keys.ApiKey.principal); "" without
+    principal: str = ""  # its API key (app.security.keys.ApiKey.principal); "" without keys
     answers: int = 0  # batch items answered: their order in the database
     progress_written: float = 0.0  # [s, monotonic]
     changed: asyncio.Event = field(default_factory=asyncio.Event)
@@ -207,7 +170,7 @@ class JobManager:
             for n in range(self.settings.job_runners)
         ]
         self._tasks.append(asyncio.create_task(self._janitor(), name="flexwing-job-janitor"))
-        self._restore_signals = _on_shutdown_signals(asyncio.get_running_loop(), self._stopping.set)
+        self._restore_signals = on_shutdown_signals(asyncio.get_running_loop(), self._stopping.set)
 
     async def close(self) -> None:
         """Fail the jobs still queued or running (interrupted), then close the database."""
@@ -379,13 +342,13 @@ class JobManager:
         row = await self.find(job_id, principal=principal)
         if row is None or row["status"] in FINISHED_STATES:
             return row
-        owner = await self.store.read(_owner_of, job_id)
+        owner = await self.store.read(store.owner_of, job_id)
         if owner is not None and self._lock.is_alive(owner):
             raise Problem("job-conflict", f"job {job_id} runs in another service process")
         await self._interrupt_orphans()
         return await self.find(job_id, principal=principal)
 
-    # -------------------------------------------------------------------------- streaming
+    # ------------------------------------------------------------ what streams read
 
     def live(self, job_id: str) -> LiveJob | None:
         return self._live.get(job_id)
@@ -406,52 +369,6 @@ class JobManager:
     @property
     def stopping(self) -> bool:
         return self._stopping.is_set()
-
-    async def item_lines(self, job_id: str) -> AsyncIterator[str]:
-        """A batch's NDJSON lines in the order they are answered, until the job ends."""
-        after = 0
-        while True:
-            live = self._live.get(job_id)  # before reading: a finished job's items are all in
-            rows = await self.store.read(store.item_lines_by_answer, job_id, after, _STREAM_CHUNK)
-            for seq, line in rows:
-                yield line + "\n"
-                after = seq
-            if rows:
-                continue
-            if live is None:
-                return
-            if not await self.wait_for_change(live, _KEEPALIVE) and self.stopping:
-                return
-
-    async def result_items(self, job_id: str) -> AsyncIterator[str]:
-        """A finished batch's item lines in request order."""
-        after = -1
-        while rows := await self.store.read(
-            store.item_lines_by_index, job_id, after, _STREAM_CHUNK
-        ):
-            for index, line in rows:
-                yield line
-                after = index
-
-    async def events(self, job_id: str, first: JobRow) -> AsyncIterator[str]:
-        """Server-sent events: `progress` while the job is queued or running, then `end` with
-        its final state (no result: GET /jobs/{id} has it)."""
-        yield f"retry: {int(_KEEPALIVE * 1000)}\n\n"
-        live, last, number = self._live.get(job_id), None, 0
-        while True:
-            row = live.row() if live is not None else first
-            view = job_view(row, self.operations)
-            final = view["status"] in FINISHED_STATES
-            if view != last:
-                number += 1
-                kind = "end" if final else "progress"
-                yield f"id: {number}\nevent: {kind}\ndata: {json.dumps(view)}\n\n"
-                last = view
-            if final or live is None or self.stopping:
-                return
-            if not await self.wait_for_change(live, _KEEPALIVE) and not self.stopping:
-                yield ": keep-alive\n\n"
-            await asyncio.sleep(_EVENT_INTERVAL)
 
     # -------------------------------------------------------------- housekeeping, metrics
 
@@ -487,40 +404,3 @@ class JobManager:
             if state is not None:
                 self._counts[state] = self._counts.get(state, 0) + change
                 self.metrics.jobs.labels(state).set(self._counts[state])
-
-
-def _owner_of(connection: Any, job_id: str) -> str | None:
-    found = connection.execute("SELECT owner FROM jobs WHERE id = ?", (job_id,)).fetchone()
-    return None if found is None else str(found[0])
-
-
-def _on_shutdown_signals(
-    loop: asyncio.AbstractEventLoop, callback: Callable[[], None]
-) -> Callable[[], None]:
-    """Also call `callback` (in the loop) on SIGINT and SIGTERM, before the handler already
-    installed (uvicorn's, which starts a graceful shutdown that waits for open responses: event
-    and item streams end on it). Returns what undoes it."""
-    if threading.current_thread() is not threading.main_thread():
-        return lambda: None
-    previous: dict[int, Any] = {}
-
-    def handler(signum: int, frame: Any) -> None:
-        with contextlib.suppress(RuntimeError):
-            loop.call_soon_threadsafe(callback)
-        chained = previous.get(signum)
-        if callable(chained):
-            chained(signum, frame)
-        elif chained == signal.SIG_DFL:
-            signal.signal(signum, signal.SIG_DFL)
-            signal.raise_signal(signum)
-
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        previous[signum] = signal.getsignal(signum)
-        signal.signal(signum, handler)
-
-    def restore() -> None:
-        for signum, chained in previous.items():
-            if signal.getsignal(signum) is handler:
-                signal.signal(signum, chained)
-
-    return restore

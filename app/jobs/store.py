@@ -9,9 +9,9 @@ client has read survives even a SIGKILL of the service.
 Tables:
 
     jobs   one row per job: id, operation, status, owner (the service instance running it),
-           principal (the API key that submitted it, `app.keys.ApiKey.principal`; "" without
-           keys: only that key sees the job), times [s since the epoch], progress (done, total,
-           problems), result and problem as JSON text;
+           principal (the API key that submitted it, `app.security.keys.ApiKey.principal`;
+           "" without keys: only that key sees the job), times [s since the epoch], progress
+           (done, total, problems), result and problem as JSON text;
     items  one row per answered batch item: (job, idx) -> its NDJSON line; seq is the order in
            which items were answered (what items.ndjson streams by).
 
@@ -370,3 +370,9 @@ def interrupted_problem(status: str, done: int, total: int) -> dict[str, Any]:
         "done": done,
         "total": total,
     }
+
+
+def owner_of(connection: sqlite3.Connection, job_id: str) -> str | None:
+    """The instance that holds a job (its lock's owner), or None for an unknown job."""
+    found = connection.execute("SELECT owner FROM jobs WHERE id = ?", (job_id,)).fetchone()
+    return None if found is None else str(found[0])

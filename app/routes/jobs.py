@@ -16,9 +16,11 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response, StreamingResponse
 from pydantic import TypeAdapter, ValidationError
 
-from app.jobs.manager import JobManager, job_view
+from app.jobs import streams
+from app.jobs.manager import JobManager
 from app.jobs.models import STUDY_BATCH, JobList, JobStatus
 from app.jobs.operations import Operation, submission_type
+from app.jobs.views import job_view
 from app.problems import FieldError, Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
 from app.security import principal
@@ -250,7 +252,7 @@ def _job_response(manager: JobManager, row: Mapping[str, Any]) -> Response:
 async def _batch_body(manager: JobManager, job_id: str, head: str) -> AsyncIterator[str]:
     yield head + '{"items": ['
     separator = ""
-    async for line in manager.result_items(job_id):
+    async for line in streams.result_items(manager, job_id):
         yield separator + line
         separator = ", "
     yield "]}}"
@@ -296,7 +298,7 @@ def _add_streaming_routes(router: APIRouter) -> None:
         manager = _manager(request)
         first = await _job_or_404(manager, job_id, owner)
         return StreamingResponse(
-            manager.events(job_id, first),
+            streams.events(manager, job_id, first),
             media_type="text/event-stream",
             headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"},
         )
@@ -314,7 +316,9 @@ def _add_streaming_routes(router: APIRouter) -> None:
         operation = manager.operations.get(row["operation"])
         if operation is None or not operation.has_items:
             raise Problem("not-found", f"job {job_id!r} is a {row['operation']}: it has no items")
-        return StreamingResponse(manager.item_lines(job_id), media_type="application/x-ndjson")
+        return StreamingResponse(
+            streams.item_lines(manager, job_id), media_type="application/x-ndjson"
+        )
 
 
 # -------------------------------------------------------------- Prefer: respond-async

@@ -1,6 +1,6 @@
-"""API keys and their key file (`app.keys`, `python -m app.keys`): keys of 256 random bits, shown
-once, stored only as SHA-256 digests; a key ring that knows each key, refuses every other string,
-and follows its file without a restart."""
+"""API keys and their key file (`app.security.keys`, `python -m app.keys`): keys of 256 random bits,
+shown once, stored only as SHA-256 digests; a key ring that knows each key, refuses every other
+string, and follows its file without a restart."""
 
 from __future__ import annotations
 
@@ -13,13 +13,13 @@ from pathlib import Path
 
 import pytest
 
-from app.keys import KeyFileError, KeyRing, add_key, read_key_file, revoke_key
+from app.security.keys import KeyFileError, KeyRing, add_key, read_key_file, revoke_key
 from tests.app.conftest import ROOT
 
 
 def _cli(*args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-m", "app.keys", *args], cwd=ROOT, capture_output=True, text=True
+        [sys.executable, "-m", "app.security.keys", *args], cwd=ROOT, capture_output=True, text=True
     )
 
 

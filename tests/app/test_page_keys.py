@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterator
 import pytest
 from playwright.sync_api import Browser
 
-from app.keys import add_key
+from app.security.keys import add_key
 from tests.app.conftest import Server
 from tests.app.test_page import Visit, browser, pytestmark, visits
 

@@ -1,12 +1,12 @@
-"""Token buckets (`app.ratelimit`), on a clock the test advances: a client may send its burst at
-once and its rate for ever, never more; clients do not share buckets (an IPv6 /64 is one
+"""Token buckets (`app.security.ratelimit`), on a clock the test advances: a client may send its
+burst at once and its rate for ever, never more; clients do not share buckets (an IPv6 /64 is one
 client). tests/app/test_security.py tests the limit over HTTP."""
 
 from __future__ import annotations
 
 import pytest
 
-from app.ratelimit import TokenBuckets, address_bucket, rate_limited
+from app.security.ratelimit import TokenBuckets, address_bucket, rate_limited
 
 
 class Clock:

@@ -36,8 +36,8 @@ from fastapi.routing import APIRoute
 from starlette.routing import BaseRoute, Mount, Route
 
 from app.jobs.store import JobStore, list_jobs, new_job_id
-from app.keys import add_key, digest
 from app.main import create_app
+from app.security.keys import add_key, digest
 from app.settings import Settings
 from openapi.generate import PATH as OPENAPI_PATH
 from tests import study

@@ -1,4 +1,4 @@
-"""Sharing the service: API keys, rate limits, security headers and CORS (issue 16).
+"""Who asks, and whether they may: API keys and rate limits, in one middleware.
 
 A request passes, outermost first:
 
@@ -12,7 +12,7 @@ A request passes, outermost first:
                                valid key where one is needed; 429 over the client's rate
     ... the body limit and the routes.
 
-With keys on (FLEXWING_API_KEYS_FILE, `app.keys`), every path needs ``Authorization: Bearer
+With keys on (FLEXWING_API_KEYS_FILE, `app.security.keys`), every path needs ``Authorization: Bearer
 <key>`` except the probes (/healthz, /readyz) and what a browser loads before anyone can type a
 key: the page (/), its files (/static/), the documentation (/docs, /openapi.json) and the problem
 types (/problems/...). None of those holds anything of a user's. A missing key and a wrong one
@@ -20,9 +20,9 @@ are told apart (/problems/key-missing, /problems/key-invalid); a wrong key's ans
 whether it was mistyped, revoked or never issued. Routes get the request's owner of jobs by
 ``Depends(principal)``.
 
-Rate limits (`app.ratelimit`) apply per key, or per client address without keys (behind a proxy,
-the address uvicorn takes from X-Forwarded-For when the proxy is in --forwarded-allow-ips), to
-every path but the probes. Keys never reach a log: nothing here logs a header, and uvicorn's
+Rate limits (`app.security.ratelimit`) apply per key, or per client address without keys (behind a
+proxy, the address uvicorn takes from X-Forwarded-For when the proxy is in --forwarded-allow-ips),
+to every path but the probes. Keys never reach a log: nothing here logs a header, and uvicorn's
 access log has the request line only (keys are never accepted in a URL).
 """
 
@@ -30,29 +30,23 @@ from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
-from typing import Any
 
 from fastapi import FastAPI, Request
 from prometheus_client import CollectorRegistry, Counter
-from starlette.middleware.cors import CORSMiddleware
 
-from app.keys import ApiKey, KeyRing
 from app.metrics import ASGIApp, Message, Metrics, Scope
-from app.problems import PROBLEM_MEDIA_TYPE, PROBLEM_TYPES, Problem, ProblemType, problem_response
-from app.ratelimit import TokenBuckets, address_bucket, rate_limited
+from app.problems import PROBLEM_TYPES, Problem, ProblemType, problem_response
+from app.security.keys import ApiKey, KeyRing
+from app.security.ratelimit import TokenBuckets, address_bucket, rate_limited
 from app.settings import Settings
 
 __all__ = [
-    "API_CONTENT_SECURITY_POLICY",
+    "ANONYMOUS",
     "PUBLIC_PATHS",
-    "SECURITY_SCHEME",
     "UNLIMITED_PATHS",
     "AccessMiddleware",
     "Client",
-    "SecurityHeadersMiddleware",
-    "document",
     "install_access",
-    "install_headers",
     "is_public",
     "principal",
 ]
@@ -80,20 +74,7 @@ PUBLIC_PREFIXES = ("/static/", "/problems/")
 UNLIMITED_PATHS = frozenset({"/healthz", "/readyz"})
 
 ANONYMOUS = "anonymous"  # the metrics label of requests without a key
-SECURITY_SCHEME = "apiKey"
 _STATE = "flexwing_client"
-
-# What an API answer (data, never a document to render) allows: nothing.
-API_CONTENT_SECURITY_POLICY = (
-    "default-src 'none'; frame-ancestors 'none'; base-uri 'none'; form-action 'none'"
-)
-_SECURITY_HEADERS: tuple[tuple[bytes, bytes], ...] = (
-    (b"x-content-type-options", b"nosniff"),
-    (b"content-security-policy", API_CONTENT_SECURITY_POLICY.encode()),
-    (b"x-frame-options", b"DENY"),
-    (b"referrer-policy", b"no-referrer"),
-    (b"cross-origin-resource-policy", b"same-origin"),
-)
 
 
 def is_public(path: str) -> bool:
@@ -227,37 +208,6 @@ class AccessMiddleware:
         await problem_response(problem, scope["path"])(scope, receive, send)
 
 
-class SecurityHeadersMiddleware:
-    """Adds the security headers a response does not set itself (pure ASGI); responses other
-    than the app's files get ``Cache-Control: no-store`` unless they say otherwise."""
-
-    def __init__(self, app: ASGIApp) -> None:
-        self.app = app
-
-    async def __call__(
-        self,
-        scope: Scope,
-        receive: Callable[[], Awaitable[Message]],
-        send: Callable[[Message], Awaitable[None]],
-    ) -> None:
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
-        static = scope["path"].startswith("/static/")
-
-        async def send_with_headers(message: Message) -> None:
-            if message["type"] == "http.response.start":
-                headers = list(message.get("headers") or [])
-                present = {name.lower() for name, _ in headers}
-                headers += [(n, v) for n, v in _SECURITY_HEADERS if n not in present]
-                if not static and b"cache-control" not in present:
-                    headers.append((b"cache-control", b"no-store"))
-                message["headers"] = headers
-            await send(message)
-
-        await self.app(scope, receive, send_with_headers)
-
-
 # ------------------------------------------------------------------------ installation
 
 
@@ -272,88 +222,3 @@ def install_access(app: FastAPI, settings: Settings, metrics: Metrics) -> None:
     app.add_middleware(
         AccessMiddleware, keys=keys, buckets=buckets, metrics=AccessMetrics(metrics.registry)
     )
-
-
-def install_headers(app: FastAPI, settings: Settings) -> None:
-    """CORS (FLEXWING_CORS_ORIGINS; none by default) and the security headers, outermost."""
-    if settings.cors_origins:
-        app.add_middleware(
-            CORSMiddleware,
-            allow_origins=settings.cors_origins,
-            allow_methods=["GET", "HEAD", "POST", "DELETE"],
-            allow_headers=["Authorization", "Content-Type", "Accept", "Prefer"],
-            expose_headers=["Location", "Retry-After", "Preference-Applied", "WWW-Authenticate"],
-            max_age=600,
-        )
-    app.add_middleware(SecurityHeadersMiddleware)
-
-
-# ------------------------------------------------------------------------ OpenAPI document
-
-
-def _problem(description: str, header: str, meaning: str, kind: str) -> dict[str, Any]:
-    problem = {"schema": {"$ref": "#/components/schemas/ProblemDetails"}}
-    return {
-        "description": description,
-        "headers": {header: {"description": meaning, "schema": {"type": kind}}},
-        "content": {PROBLEM_MEDIA_TYPE: problem},
-    }
-
-
-def document(schema: dict[str, Any], settings: Settings) -> None:
-    """Declare the bearer key scheme (required with keys on; optional, `{}`, without), the 401
-    and 429 answers, and say so in the description."""
-    schema.setdefault("components", {}).setdefault("securitySchemes", {})[SECURITY_SCHEME] = {
-        "type": "http",
-        "scheme": "bearer",
-        "description": (
-            "An API key from the service's operator (`python -m app.keys create`), sent as "
-            "`Authorization: Bearer <key>`; needed when the service has keys "
-            "(FLEXWING_API_KEYS_FILE)."
-        ),
-    }
-    keyed = settings.api_keys_file is not None
-    schema["security"] = [{SECURITY_SCHEME: []}] if keyed else [{SECURITY_SCHEME: []}, {}]
-    unauthorized = _problem(
-        "No API key or a wrong one (/problems/key-missing, /problems/key-invalid).",
-        "WWW-Authenticate",
-        'Bearer realm="flexwing" (and error="invalid_token" for a wrong key)',
-        "string",
-    )
-    limited = _problem(
-        "Over this client's rate limit (/problems/rate-limited): retry after Retry-After. Only "
-        "where the service has rate limits: with API keys, or FLEXWING_RATE_LIMIT set.",
-        "Retry-After",
-        "[s] until this client's next request is accepted",
-        "integer",
-    )
-    for path, item in schema.get("paths", {}).items():
-        for operation in item.values():
-            responses = operation.setdefault("responses", {})
-            if is_public(path):
-                operation["security"] = []
-            else:
-                responses.setdefault("401", unauthorized)
-            if path not in UNLIMITED_PATHS:
-                responses.setdefault("429", limited)
-    sharing = (
-        "Sharing: with API keys on (FLEXWING_API_KEYS_FILE) every operation but healthz and readyz "
-        "needs `Authorization: Bearer <key>` (401 /problems/key-missing or /problems/key-invalid "
-        "otherwise), and a job is seen only by the key that created it."
-    )
-    if settings.client_rate_limit > 0:
-        sharing += (
-            f" Each client (its key; its address without keys) may send {settings.rate_burst} "
-            f"requests at once and {settings.client_rate_limit:g} per second "
-            "(FLEXWING_RATE_BURST, FLEXWING_RATE_LIMIT); beyond that 429 /problems/rate-limited "
-            "with Retry-After."
-        )
-    else:
-        sharing += (
-            " Rate limits: none here (FLEXWING_RATE_LIMIT unset without API keys: one owner). "
-            "With API keys each key may send FLEXWING_RATE_BURST (default 100) requests at once "
-            "and FLEXWING_RATE_LIMIT (default 50) per second; beyond that 429 "
-            "/problems/rate-limited with Retry-After."
-        )
-    info = schema.setdefault("info", {})
-    info["description"] = info.get("description", "").rstrip() + "\n\n" + sharing + "\n"
