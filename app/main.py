@@ -179,11 +179,11 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.state.pool = pool
     app.state.service = service
     install_handlers(app)
-    app.include_router(solve.router)
-    app.include_router(optimize.router)
-    # Prefer: respond-async turns a /sweep call into a job (202 + Location).
-    async_sweep = Depends(job_routes.respond_async("sweep"))
-    app.include_router(sweep.router, dependencies=[async_sweep], responses=job_routes.ACCEPTED)
+    # Each operation answers 202 with a job past its wait (app.routes.answers), or at once
+    # with Prefer: respond-async.
+    for name, module in (("solve", solve), ("sweep", sweep), ("optimize", optimize)):
+        at_once = Depends(job_routes.respond_async(name))
+        app.include_router(module.router, dependencies=[at_once], responses=job_routes.ACCEPTED)
     for module in (health, page):
         app.include_router(module.router)
     job_routes.install(app, jobs)

@@ -91,6 +91,16 @@ class Settings(BaseSettings):
     optimize_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /optimize in a worker."
     )
+    sync_wait: float = Field(
+        default=10.0,
+        gt=0,
+        description=(
+            "[s] how long a synchronous request (/solve, /sweep, /optimize) waits for its answer; "
+            "past it the request becomes a job at once (202 Accepted, Location: /jobs/{id}) "
+            "that runs on within its time budget. A client may ask for a longer wait, up to that "
+            "budget, with Prefer: wait=<seconds> (RFC 7240)."
+        ),
+    )
     tasks_per_worker: int = Field(
         default=2,
         ge=1,

@@ -32,10 +32,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from load_benchmark import local_server_process
 
-from app.security.keys import KeyRing, add_key
 from app.metrics import Message, Metrics, Scope
+from app.security import AccessMiddleware, SecurityHeadersMiddleware
+from app.security.access import AccessMetrics
+from app.security.keys import KeyRing, add_key
 from app.security.ratelimit import TokenBuckets
-from app.security import AccessMetrics, AccessMiddleware, SecurityHeadersMiddleware
 from tests import study
 
 

@@ -227,6 +227,55 @@ class JobManager:
         self._queue.put_nowait(job)
         return job
 
+    def adopt(
+        self, name: str, answer: asyncio.Future[dict[str, Any]], total: int, *, principal: str
+    ) -> LiveJob:
+        """A synchronous request past its wait, as a running job of `principal`: `answer` (its
+        service call, already running) finishes it, recorded as the job's result or problem.
+        It never waits in the queue: it runs already."""
+        operation = self.operations[name]
+        assert operation.result is not None, f"{name} answers no payload"
+        started = time.time()
+        job = LiveJob(
+            store.new_job_id(),
+            operation,
+            None,
+            started,
+            total,
+            status="running",
+            started=started,
+            principal=principal,
+        )
+        self._live[job.id] = job
+        self.store.write(store.insert_job, job.row() | {"owner": self.owner, "problem": None})
+        self._count(None, "running")
+        self.metrics.jobs_submitted.labels(name).inc()
+        job.task = asyncio.create_task(self._finish_adopted(job, answer, operation.result))
+        return job
+
+    async def _finish_adopted(
+        self,
+        job: LiveJob,
+        answer: asyncio.Future[dict[str, Any]],
+        result: Callable[[dict[str, Any]], str],
+    ) -> None:
+        try:
+            payload = await answer
+        except asyncio.CancelledError:
+            answer.cancel()
+            if job.cancel_requested:
+                self._finish(job, "cancelled")
+            else:
+                self._finish(job, "failed", problem=self._interrupted(job))
+        except Problem as problem:
+            self._finish(job, "failed", problem=problem_body(problem))
+        except Exception as error:
+            log.exception("job %s (%s) failed", job.id, job.operation.name)
+            internal = Problem("internal-error", f"unexpected {type(error).__name__}")
+            self._finish(job, "failed", problem=problem_body(internal))
+        else:
+            self._finish(job, "succeeded", result=result(payload))
+
     # --------------------------------------------------------------------------- running
 
     async def _runner(self) -> None:

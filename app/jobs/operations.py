@@ -72,7 +72,9 @@ class Operation:
 
     `units`: its progress total for a request; `check`: settings-dependent validation at
     submission (raises an invalid-input Problem with paths relative to the request); `run`: does
-    the work and returns the result as JSON text (None when it is assembled from batch items).
+    the work and returns the result as JSON text (None when it is assembled from batch items);
+    `result`: an answer's payload as that JSON text (what a synchronous request past its wait
+    becomes as a job records, `JobManager.adopt`).
     """
 
     name: str
@@ -83,6 +85,7 @@ class Operation:
     check: Callable[[Any, Settings], None]
     run: Callable[[JobContext, Any], Awaitable[str | None]]
     has_items: bool = False
+    result: Callable[[dict[str, Any]], str] | None = None
 
 
 OPERATIONS: dict[str, Operation] = {}
@@ -109,19 +112,19 @@ async def patiently(call: Callable[[], Awaitable[T]]) -> T:
         backoff = min(2 * backoff, _MAX_BACKOFF)
 
 
-async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
-    payload = await patiently(lambda: context.service.answer("optimize", request))
-    return OptimizeResponse.model_validate(payload).model_dump_json()
+def _json(model: type[BaseModel]) -> Callable[[dict[str, Any]], str]:
+    """An answer's payload as the JSON text of `model`, the endpoint's response model."""
+    return lambda payload: model.model_validate(payload).model_dump_json()
 
 
-async def _run_solve(context: JobContext, request: SolveRequest) -> str:
-    payload = await patiently(lambda: context.service.answer("solve", request))
-    return SolveResponse.model_validate(payload).model_dump_json()
+def _answering(name: str, model: type[BaseModel]) -> Callable[[JobContext, Any], Awaitable[str]]:
+    """A job that answers what the endpoint `name` answers."""
 
+    async def run(context: JobContext, request: Any) -> str:
+        payload = await patiently(lambda: context.service.answer(name, request))
+        return _json(model)(payload)
 
-async def _run_sweep(context: JobContext, request: SweepRequest) -> str:
-    payload = await patiently(lambda: context.service.answer("sweep", request))
-    return SweepResponse.model_validate(payload).model_dump_json()
+    return run
 
 
 def _check(request: Any, settings: Settings) -> None:
@@ -186,7 +189,8 @@ register(
         request_description="A POST /solve body.",
         units=lambda request: 1,
         check=_check,
-        run=_run_solve,
+        run=_answering("solve", SolveResponse),
+        result=_json(SolveResponse),
     )
 )
 register(
@@ -197,7 +201,8 @@ register(
         request_description="A POST /sweep body.",
         units=_sweep_points,
         check=_check,
-        run=_run_sweep,
+        run=_answering("sweep", SweepResponse),
+        result=_json(SweepResponse),
     )
 )
 register(
@@ -208,7 +213,8 @@ register(
         request_description="A POST /optimize body.",
         units=lambda request: 1,
         check=_check,
-        run=_run_optimize,
+        run=_answering("optimize", OptimizeResponse),
+        result=_json(OptimizeResponse),
     )
 )
 register(

@@ -44,7 +44,11 @@ _LOCATION: dict[str, Any] = {
 ACCEPTED: dict[int | str, dict[str, Any]] = {
     202: {
         "model": JobStatus,
-        "description": "Accepted as a job: poll Location (GET /jobs/{id}) or its events.",
+        "description": (
+            "Accepted as a job: with Prefer: respond-async, or when the answer was not ready "
+            "within FLEXWING_SYNC_WAIT (default 10 s; Prefer: wait=<seconds> asks for longer, up "
+            "to the operation's time budget). Poll Location (GET /jobs/{id}) or its events."
+        ),
         "headers": _LOCATION,
     }
 }
@@ -366,8 +370,10 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
             str | None,
             Header(
                 description=(
-                    "`respond-async` (RFC 7240): run this request as a job and answer 202 with "
-                    "`Location: /jobs/{id}` at once."
+                    "RFC 7240 preferences: `respond-async` runs this request as a job and answers "
+                    "202 with `Location: /jobs/{id}` at once; `wait=<seconds>` waits that long "
+                    "for the answer (default FLEXWING_SYNC_WAIT, at most the operation's time "
+                    "budget) before it becomes a job (202)."
                 )
             ),
         ] = None,

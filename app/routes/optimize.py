@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body
+from fastapi import APIRouter, Body, Request
 
+from app.routes.answers import answer
 from app.routes.deps import ServiceDep
 from app.routes.responses import OPTIMIZE_ERRORS
 from app.schemas import OPTIMIZE_EXAMPLES, OptimizeRequest, OptimizeResponse
@@ -23,7 +24,9 @@ router = APIRouter(tags=["design"])
     summary="Optimal jig twist (and spar wall) of a flexible wing carrying a lift",
 )
 async def optimize(
-    body: Annotated[OptimizeRequest, Body(openapi_examples=OPTIMIZE_EXAMPLES)], service: ServiceDep
+    body: Annotated[OptimizeRequest, Body(openapi_examples=OPTIMIZE_EXAMPLES)],
+    request: Request,
+    service: ServiceDep,
 ) -> Any:
     """Minimises the deformed wing's induced drag (near field or Trefftz plane) or its spar's
     mass while it carries the lift, by IPOPT on exact gradients of the coupled equilibrium.
@@ -33,4 +36,4 @@ async def optimize(
     optimum: 422 `/problems/infeasible-design` naming the constraint. Long problems can run as
     jobs (`POST /jobs` with operation `optimize`).
     """
-    return await service.answer("optimize", body)
+    return await answer("optimize", body, request, service)

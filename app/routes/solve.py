@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body
+from fastapi import APIRouter, Body, Request
 
+from app.routes.answers import answer
 from app.routes.deps import ServiceDep
 from app.routes.responses import SOLVE_ERRORS
 from app.schemas import SOLVE_EXAMPLES, SolveRequest, SolveResponse
@@ -23,7 +24,9 @@ router = APIRouter(tags=["equilibrium"])
     summary="Static aeroelastic equilibrium of a wing at one flight condition",
 )
 async def solve(
-    body: Annotated[SolveRequest, Body(openapi_examples=SOLVE_EXAMPLES)], service: ServiceDep
+    body: Annotated[SolveRequest, Body(openapi_examples=SOLVE_EXAMPLES)],
+    request: Request,
+    service: ServiceDep,
 ) -> Any:
     """Deformation, loads, totals and stability of the wing's equilibrium.
 
@@ -33,4 +36,4 @@ async def solve(
     numbers). Past torsional divergence there is no equilibrium: 422 `/problems/no-equilibrium`
     with the fold speed. `validity` says where the answer leaves the model's validity.
     """
-    return await service.answer("solve", body)
+    return await answer("solve", body, request, service)

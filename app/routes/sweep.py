@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Body
+from fastapi import APIRouter, Body, Request
 
+from app.routes.answers import answer
 from app.routes.deps import ServiceDep
 from app.routes.responses import SWEEP_ERRORS
 from app.schemas import SWEEP_EXAMPLES, SweepRequest, SweepResponse
@@ -23,7 +24,9 @@ router = APIRouter(tags=["equilibrium"])
     summary="Equilibria of a wing over airspeeds, and its torsional divergence",
 )
 async def sweep(
-    body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)], service: ServiceDep
+    body: Annotated[SweepRequest, Body(openapi_examples=SWEEP_EXAMPLES)],
+    request: Request,
+    service: ServiceDep,
 ) -> Any:
     """Solves the airspeeds, answered in the given order, each on its own.
 
@@ -38,4 +41,4 @@ async def sweep(
     ends), each null with a reason when it does not exist; `validity` says from which airspeed
     on each finding about the points appears.
     """
-    return await service.answer("sweep", body)
+    return await answer("sweep", body, request, service)

@@ -1,0 +1,52 @@
+"""How a synchronous operation answers: at once when its answer is ready within the wait
+(FLEXWING_SYNC_WAIT, or the client's `Prefer: wait=<seconds>` up to the operation's time
+budget, RFC 7240), else 202 Accepted with `Location: /jobs/{id}`: the work runs on as a job,
+nothing is lost and no valid request ends in a 504."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+from fastapi import Request
+from fastapi.responses import JSONResponse
+from pydantic import BaseModel
+
+from app.jobs.manager import JobManager
+from app.jobs.views import job_view
+from app.security import principal
+from app.service import OPERATIONS, Service
+
+__all__ = ["answer", "preferred_wait"]
+
+
+def preferred_wait(prefer: str | None) -> float | None:
+    """[s] the `wait` preference of a Prefer header (RFC 7240), or None."""
+    for part in (prefer or "").split(","):
+        token, _, value = part.split(";")[0].partition("=")
+        if token.strip().lower() == "wait":
+            try:
+                seconds = float(value.strip().strip('"'))
+            except ValueError:
+                return None
+            return seconds if seconds >= 0 else None
+    return None
+
+
+async def answer(operation: str, body: BaseModel, request: Request, service: Service) -> Any:
+    """The answer of `body` to `operation`, or a 202 for the job it became past the wait."""
+    task = service.task(body)  # an invalid request is its 422 here, never a job
+    settings = service.settings
+    budget: float = getattr(settings, OPERATIONS[operation].budget)
+    wait = preferred_wait(request.headers.get("prefer"))
+    wait = settings.sync_wait if wait is None else min(wait, budget)
+    running = asyncio.ensure_future(service.run(operation, task))
+    try:
+        return await asyncio.wait_for(asyncio.shield(running), wait)
+    except TimeoutError:
+        pass
+    manager: JobManager = request.app.state.jobs
+    total = len(task.airspeeds) if hasattr(task, "airspeeds") else 1
+    job = manager.adopt(operation, running, total, principal=principal(request))
+    view = job_view(job.row(), manager.operations)
+    return JSONResponse(view, status_code=202, headers={"Location": view["links"]["self"]})
