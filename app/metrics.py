@@ -82,10 +82,12 @@ class Metrics:
             registry=r,
         )
         self.pending = Gauge(
-            "flexwing_pending_solves", "Jobs running or waiting for a worker.", registry=r
+            "flexwing_pending_tasks",
+            "Tasks (solves, sweeps, designs, batch items) running or waiting for a worker.",
+            registry=r,
         )
         self.running = Gauge(
-            "flexwing_running_jobs", "Jobs running in local workers now.", registry=r
+            "flexwing_running_tasks", "Tasks running in local workers now.", registry=r
         )
         self.ready = Gauge("flexwing_ready", "1 when the worker pool is warm.", registry=r)
         # Jobs (POST /jobs, issue 13).

@@ -155,7 +155,7 @@ def _request(rng: random.Random) -> tuple[str, str, bytes]:
 async def _pending(client: httpx.AsyncClient) -> float:
     text = (await client.get("/metrics")).text
     for line in text.splitlines():
-        if line.startswith("flexwing_pending_solves "):
+        if line.startswith("flexwing_pending_tasks "):
             return float(line.split()[1])
     return 0.0
 

@@ -38,10 +38,19 @@ keeps the work at O(M^2) instead of O(M^3).
 
 from __future__ import annotations
 
+import ast
 import functools
+import hashlib
+import inspect
+import sys
+from types import ModuleType
 
 import casadi as ca
 import numpy as np
+
+import solver.geometry as geometry_module
+import solver.layout as layout_module
+import solver.vlm as vlm_module
 
 from solver.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
 from solver.layout import Layout
@@ -54,9 +63,27 @@ __all__ = [
     "build_residual_function",
 ]
 
-# Bump when the equations or the graph they are generated from change: compiled libraries on
-# disk are keyed by it.
-MODEL_VERSION = "11"
+def _graph_source_digest(*modules: ModuleType) -> str:
+    """A digest of the code the compiled model's graph is generated from, docstrings left out
+    (comments never reach the syntax tree): a change to the equations or to how they are
+    written changes it, an edit of the documentation does not."""
+    digest = hashlib.blake2b(digest_size=6)
+    for module in modules:
+        tree = ast.parse(inspect.getsource(module))
+        for node in ast.walk(tree):
+            body = getattr(node, "body", None)
+            if isinstance(body, list) and body and isinstance(body[0], ast.Expr):
+                if isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
+                    node.body = body[1:] or [ast.Pass()]  # type: ignore[attr-defined]
+        digest.update(ast.dump(tree).encode())
+    return digest.hexdigest()
+
+
+# Compiled libraries on disk are keyed by it: it changes by itself with the equations or the
+# graph they are generated from (this module and the modules below it that build the graph).
+MODEL_VERSION = _graph_source_digest(
+    sys.modules[__name__], layout_module, geometry_module, vlm_module
+)
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and

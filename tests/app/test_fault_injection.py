@@ -141,7 +141,7 @@ def test_repeated_kills_under_traffic_lose_no_request(chaos_server: Server) -> N
                     "the pool serves again",
                 )
                 pids = server.wait_ready()
-                wait_until(lambda: server.metric("flexwing_pending_solves") >= 2, "traffic")
+                wait_until(lambda: server.metric("flexwing_pending_tasks") >= 2, "traffic")
                 kills += kill(pids[0])
                 wait_until(
                     lambda pids=pids: not any(alive(p) for p in pids),
@@ -187,7 +187,7 @@ def test_a_kill_during_a_sweep_is_retried_or_reported(chaos_server: Server) -> N
     body = {"wing": wing_json(), "flight": {"alpha": 5.0}, "velocities": [8.0, 10.0, 12.0]}
     with ThreadPoolExecutor(1) as pool:
         future = pool.submit(lambda: server.client(timeout=HANG_GUARD).post("/sweep", json=body))
-        wait_until(lambda: server.metric("flexwing_pending_solves") >= 1, "the sweep runs")
+        wait_until(lambda: server.metric("flexwing_pending_tasks") >= 1, "the sweep runs")
         assert kill(pids[0])
         response = future.result()
     if response.status_code == 200:
@@ -247,7 +247,7 @@ def test_sigterm_finishes_the_requests_in_flight_then_exits(
             )
             for v in speeds
         ]
-        wait_until(lambda: server.metric("flexwing_pending_solves") >= len(speeds), "all in flight")
+        wait_until(lambda: server.metric("flexwing_pending_tasks") >= len(speeds), "all in flight")
         server.process.send_signal(signal.SIGTERM)
         responses = [f.result() for f in futures]
     for velocity, response in zip(speeds, responses, strict=True):

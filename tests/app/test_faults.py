@@ -33,7 +33,7 @@ def _post_big(server: Server, velocity: float) -> httpx.Response:
 def _wait_pending(server: Server, count: int) -> None:
     """Wait until `count` solves are running or queued in the server (no timing assumed)."""
     deadline = time.monotonic() + 60
-    while server.metric("flexwing_pending_solves") < count:
+    while server.metric("flexwing_pending_tasks") < count:
         assert time.monotonic() < deadline, "requests never reached the pool"
         time.sleep(0.01)
 
@@ -49,7 +49,7 @@ def _wait_running(server: Server, count: int) -> None:
     """Wait until `count` jobs run in workers (a job killed while queued is resubmitted for
     free: these tests kill running ones)."""
     deadline = time.monotonic() + 60
-    while server.metric("flexwing_running_jobs") < count:
+    while server.metric("flexwing_running_tasks") < count:
         assert time.monotonic() < deadline, "no job started"
         time.sleep(0.01)
 

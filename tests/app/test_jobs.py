@@ -362,7 +362,7 @@ def test_cancelling_a_batch_stops_the_work_not_yet_started(slow_server: Server) 
         assert 2 <= cancelled["progress"]["done"] < 60
         # Whatever a worker still had has finished: nothing pending in the pool.
         deadline = time.monotonic() + HANG_GUARD
-        while slow_server.metric("flexwing_pending_solves") > 0:
+        while slow_server.metric("flexwing_pending_tasks") > 0:
             assert time.monotonic() < deadline, "the pool never drained"
             time.sleep(0.01)
         later = client.get(location).json()

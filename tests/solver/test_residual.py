@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import importlib
+
 import numpy as np
 import pytest
 
 import solver
+from solver import residual
 from solver.system import CoupledSystem
 from tests.study import study_wing, tapered_forward_ea
 
@@ -115,3 +118,21 @@ def test_the_alpha_derivatives_and_the_lift_gradient_match_finite_differences(na
     np.testing.assert_allclose(
         terms.lift_x, gradient, rtol=1e-5, atol=1e-8 * np.abs(gradient).max()
     )
+
+
+def test_the_model_version_follows_the_code_not_its_documentation(tmp_path, monkeypatch):
+    """Compiled libraries are named by it: a change to how the equations are written makes a
+    new library, an edit of a docstring does not."""
+    monkeypatch.syspath_prepend(str(tmp_path))
+    versions = {}
+    sources = {
+        "plain": 'def f(x):\n    """Doubles."""\n    return 2 * x\n',
+        "reworded": 'def f(x):\n    """Twice x, in words."""\n    # a comment\n    return 2 * x\n',
+        "changed": 'def f(x):\n    """Doubles."""\n    return x + x\n',
+    }
+    for name, source in sources.items():
+        (tmp_path / f"graph_{name}.py").write_text(source)
+        module = importlib.import_module(f"graph_{name}")
+        versions[name] = residual._graph_source_digest(module)
+    assert versions["plain"] == versions["reworded"] != versions["changed"]
+    assert len(residual.MODEL_VERSION) == 12
