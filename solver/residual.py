@@ -51,7 +51,6 @@ import numpy as np
 import solver.geometry as geometry_module
 import solver.layout as layout_module
 import solver.vlm as vlm_module
-
 from solver.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
 from solver.layout import Layout
 from solver.vlm import induced_velocities, normal_source_columns, source_columns
@@ -63,6 +62,7 @@ __all__ = [
     "build_residual_function",
 ]
 
+
 def _graph_source_digest(*modules: ModuleType) -> str:
     """A digest of the code the compiled model's graph is generated from, docstrings left out
     (comments never reach the syntax tree): a change to the equations or to how they are
@@ -72,11 +72,18 @@ def _graph_source_digest(*modules: ModuleType) -> str:
         tree = ast.parse(inspect.getsource(module))
         for node in ast.walk(tree):
             body = getattr(node, "body", None)
-            if isinstance(body, list) and body and isinstance(body[0], ast.Expr):
-                if isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
-                    node.body = body[1:] or [ast.Pass()]  # type: ignore[attr-defined]
+            if isinstance(body, list) and body and _is_docstring(body[0]):
+                node.body = body[1:] or [ast.Pass()]  # type: ignore[attr-defined]
         digest.update(ast.dump(tree).encode())
     return digest.hexdigest()
+
+
+def _is_docstring(statement: ast.stmt) -> bool:
+    return (
+        isinstance(statement, ast.Expr)
+        and isinstance(statement.value, ast.Constant)
+        and isinstance(statement.value.value, str)
+    )
 
 
 # Compiled libraries on disk are keyed by it: it changes by itself with the equations or the

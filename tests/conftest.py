@@ -44,15 +44,11 @@ _SERVER_FIXTURES = {"server", "fault_server", "make_server"}
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Mark live-server modules `server` and run them after everything else: the unit tests
-    (seconds) fail first, the live servers (minutes) come last. A whole module moves, so its
-    module-scoped servers start once."""
-    server_modules = {
-        item.module.__name__
-        for item in items
-        if isinstance(item, pytest.Function) and _SERVER_FIXTURES & set(item.fixturenames)
-    }
+    """Mark every test that needs a live server (one of its fixtures starts one) `server` and
+    run them after everything else: the in-process tests (seconds) fail first, the live
+    servers (minutes) come last. The sort is stable, so each module's server tests stay
+    together and its module-scoped servers start once."""
     for item in items:
-        if isinstance(item, pytest.Function) and item.module.__name__ in server_modules:
+        if isinstance(item, pytest.Function) and _SERVER_FIXTURES & set(item.fixturenames):
             item.add_marker(pytest.mark.server)
     items.sort(key=lambda item: item.get_closest_marker("server") is not None)

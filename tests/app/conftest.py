@@ -11,6 +11,7 @@ tests the limiter, with its defaults under keys too.
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import os
 import signal
@@ -21,9 +22,13 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import httpx
 import pytest
+
+from app.main import create_app
+from app.settings import Settings
 
 ROOT = Path(__file__).resolve().parents[2]
 # The first start on a machine compiles N = 30 (about 15 s per process on this 2-core machine).
@@ -158,3 +163,47 @@ def make_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Callable[.
 def client(server: Server) -> Iterator[httpx.Client]:
     with server.client() as c:
         yield c
+
+
+def in_process_client(settings: Settings) -> httpx.Client:
+    """An HTTP client of the app with `settings`, in this process, without its lifespan: no
+    worker starts, so it answers what needs no solve (validation, 4xx problems, documents, the
+    page's files), and a request that reaches the pool is 503 not-ready. For the tests that
+    only check validation: no server."""
+    return httpx.Client(transport=_InProcess(create_app(settings)), base_url="http://in-process")
+
+
+@pytest.fixture(scope="session")
+def in_process(tmp_path_factory: pytest.TempPathFactory) -> Iterator[httpx.Client]:
+    """`in_process_client` of the default settings (one for the session: it keeps nothing a
+    validation test could see)."""
+    jobs_db = tmp_path_factory.mktemp("in_process") / "jobs.sqlite3"
+    with in_process_client(Settings(workers=1, jobs_db=jobs_db)) as client:
+        yield client
+
+
+class _InProcess(httpx.BaseTransport):
+    """A synchronous transport into an ASGI app, on an event loop of its own: httpx's own
+    ASGITransport, each exchange run to its end (the body read whole)."""
+
+    def __init__(self, app: Any) -> None:
+        self.loop = asyncio.new_event_loop()
+        self.asgi = httpx.ASGITransport(app=app)
+
+    def handle_request(self, request: httpx.Request) -> httpx.Response:
+        async def exchange() -> httpx.Response:
+            body = b"".join([chunk async for chunk in _chunks(request.stream)])
+            sent = httpx.Request(request.method, request.url, headers=request.headers, content=body)
+            response = await self.asgi.handle_async_request(sent)
+            content = await response.aread()
+            return httpx.Response(response.status_code, headers=response.headers, content=content)
+
+        return self.loop.run_until_complete(exchange())
+
+    def close(self) -> None:
+        self.loop.close()
+
+
+async def _chunks(stream: Any) -> Any:
+    for chunk in stream:
+        yield chunk

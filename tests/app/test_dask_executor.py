@@ -30,6 +30,9 @@ from solver.compiled import cache_dir
 from tests import study
 from tests.app.conftest import ROOT, Server
 
+# Run with the live-server tests, after the fast loop: a Dask scheduler and workers.
+pytestmark = pytest.mark.server
+
 pytest.importorskip("distributed", reason="FLEXWING_EXECUTOR=dask needs flexwing[dask]")
 
 DASK = Path(sys.executable).with_name("dask")

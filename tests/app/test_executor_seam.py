@@ -22,6 +22,7 @@ async def _solve_in_process(settings: Settings) -> tuple[dict, httpx.Response]:
             return ready, await client.post("/solve", json=study.solve_request(10.0))
 
 
+@pytest.mark.server  # warms a pool: compiles N = 30 on a machine without the library
 def test_a_configured_executor_serves_solves() -> None:
     settings = Settings(workers=1, executor="tests.app.executors:threads")
     ready, response = asyncio.run(_solve_in_process(settings))

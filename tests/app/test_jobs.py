@@ -19,8 +19,9 @@ from typing import Any
 import httpx
 import pytest
 
+from app.settings import Settings
 from tests import study
-from tests.app.conftest import Server
+from tests.app.conftest import Server, in_process_client
 
 FINISHED = {"succeeded", "failed", "cancelled"}
 HANG_GUARD = 120.0  # [s] only a hang fails on it
@@ -114,6 +115,14 @@ def jobs_server(
     return make_server("jobs_server", FLEXWING_JOBS_DB=str(db), FLEXWING_MAX_BATCH_ITEMS="20")
 
 
+@pytest.fixture(scope="module")
+def in_process(tmp_path_factory: pytest.TempPathFactory) -> Iterator[httpx.Client]:
+    """As `jobs_server` is configured, in this process (for what only validation answers)."""
+    db = tmp_path_factory.mktemp("in_process_jobs") / "jobs.sqlite3"
+    with in_process_client(Settings(workers=1, jobs_db=db, max_batch_items=20)) as client:
+        yield client
+
+
 def slow_env(tmp: Path, **extra: str) -> dict[str, str]:
     return {
         "FLEXWING_COMPILE": "0",
@@ -198,23 +207,23 @@ def _fields(response: httpx.Response) -> list[str]:
 
 
 def test_a_batch_item_that_is_not_a_solve_request_is_a_422_naming_it(
-    client: httpx.Client,
+    in_process: httpx.Client,
 ) -> None:
     items = [study.solve_request(10.0) for _ in range(5)]
     items[3]["wing"]["chord"][2] = -1.0
-    response = submit(client, {"operation": "batch", "request": {"items": items}})
+    response = submit(in_process, {"operation": "batch", "request": {"items": items}})
     assert _fields(response) == ["request.items[3].wing.chord[2]"]
 
 
 def test_a_batch_item_beyond_the_published_station_limit_is_a_422_naming_it(
-    client: httpx.Client,
+    in_process: httpx.Client,
 ) -> None:
     # The document says at most FLEXWING_MAX_STATIONS (150) stations and values per station:
     # a body that breaks it is invalid as a whole, not an item answered with a problem.
     items = [study.solve_request(10.0) for _ in range(3)]
     items[1]["wing"]["y"] = {"semispan": 5.0, "stations": 151}
     items[2]["wing"]["chord"] = [1.0] * 151
-    response = submit(client, {"operation": "batch", "request": {"items": items}})
+    response = submit(in_process, {"operation": "batch", "request": {"items": items}})
     assert _fields(response) == ["request.items[1].wing.y.stations", "request.items[2].wing.chord"]
 
 
@@ -251,9 +260,9 @@ def test_a_batch_item_beyond_the_published_station_limit_is_a_422_naming_it(
     ],
 )
 def test_bodies_that_are_not_jobs_are_422_naming_the_field(
-    client: httpx.Client, body: Any, fields: list[str]
+    in_process: httpx.Client, body: Any, fields: list[str]
 ) -> None:
-    assert set(_fields(submit(client, body))) == set(fields)
+    assert set(_fields(submit(in_process, body))) == set(fields)
 
 
 def test_the_endpoints_own_checks_apply_at_submission(client: httpx.Client) -> None:
@@ -280,11 +289,11 @@ def test_the_endpoints_own_checks_apply_at_submission(client: httpx.Client) -> N
     ids=["empty-body", "broken-json", "text-plain", "no-content-type"],
 )
 def test_a_body_that_is_not_json_is_refused_with_or_without_respond_async(
-    client: httpx.Client, content_type: str | None, content: bytes, reason: str
+    in_process: httpx.Client, content_type: str | None, content: bytes, reason: str
 ) -> None:
     headers = {} if content_type is None else {"Content-Type": content_type}
     for prefer in ({}, {"Prefer": "respond-async"}):
-        response = client.post("/sweep", content=content, headers=headers | prefer)
+        response = in_process.post("/sweep", content=content, headers=headers | prefer)
         assert response.status_code == 422, response.text
         problem = response.json()
         assert problem["type"] == "/problems/invalid-input"

@@ -78,16 +78,16 @@ def test_the_optimal_wing_solved_again_answers_the_same(client: httpx.Client):
         "negative-w",
     ],
 )
-def test_a_problem_that_cannot_be_posed_is_a_422_naming_the_field(client, changes, field):
-    response = client.post("/optimize", json=_request(**changes))
+def test_a_problem_that_cannot_be_posed_is_a_422_naming_the_field(in_process, changes, field):
+    response = in_process.post("/optimize", json=_request(**changes))
     assert response.status_code == 422, response.text
     assert field in [e["field"] for e in response.json()["errors"]], response.text
 
 
-def test_the_published_design_flight_accepts_only_positive_lift(client: httpx.Client):
+def test_the_published_design_flight_accepts_only_positive_lift(in_process: httpx.Client):
     """A design carries a positive lift: the OpenAPI document says so (a trimmed /solve takes
     either sign, /optimize does not)."""
-    schemas = client.get("/openapi.json").json()["components"]["schemas"]
+    schemas = in_process.get("/openapi.json").json()["components"]["schemas"]
     lift = schemas["OptimizeFlightAtLift"]["properties"]["lift"]
     load_factor = schemas["OptimizeFlightAtWeight"]["properties"]["load_factor"]
     assert lift["minimum"] > 0 and load_factor["minimum"] > 0

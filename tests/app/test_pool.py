@@ -15,6 +15,9 @@ from app.metrics import Metrics
 from app.settings import Settings
 from tests.app import pool_jobs
 
+# Run with the live-server tests, after the fast loop: real worker processes.
+pytestmark = pytest.mark.server
+
 APP = Path(__file__).resolve().parents[2] / "app"
 # What app/pool.py used to read from ProcessPoolExecutor; none of it is public.
 PRIVATE_POOL_ATTRIBUTES = {

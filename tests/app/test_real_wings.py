@@ -73,19 +73,19 @@ def test_the_api_answers_like_aerosandbox_on_an_extended_reference(client: httpx
     ],
 )
 def test_a_bad_wing_model_input_names_its_field(
-    client: httpx.Client, change: dict[str, Any], field: str
+    in_process: httpx.Client, change: dict[str, Any], field: str
 ) -> None:
     body = study.solve_request(10.0)
     body["wing"] |= change
-    response = client.post("/solve", json=body)
+    response = in_process.post("/solve", json=body)
     assert response.status_code == 422, response.text
     fields = [e["field"] for e in response.json()["errors"]]
     assert fields == [field], fields
 
 
-def test_too_many_chordwise_panels_is_invalid_input(client: httpx.Client) -> None:
+def test_too_many_chordwise_panels_is_invalid_input(in_process: httpx.Client) -> None:
     body = study.solve_request(10.0, options={"chordwise_panels": 9})
-    response = client.post("/solve", json=body)
+    response = in_process.post("/solve", json=body)
     assert response.status_code == 422
     assert [e["field"] for e in response.json()["errors"]] == ["options.chordwise_panels"]
 
@@ -96,7 +96,7 @@ def test_too_many_chordwise_panels_is_invalid_input(client: httpx.Client) -> Non
     ids=["solve-n150-k8", "solve-n122-k2", "sweep-n62-k4"],
 )
 def test_a_lattice_past_the_panel_limit_is_invalid_input(
-    client: httpx.Client, route: str, n: int, k: int
+    in_process: httpx.Client, route: str, n: int, k: int
 ) -> None:
     """(N - 1) k <= 240 by default: a larger lattice's first solve, on the virtual machine
     while its library compiles, would outlast the time budget (N = 150, k = 8 took 20 s)."""
@@ -105,7 +105,7 @@ def test_a_lattice_past_the_panel_limit_is_invalid_input(
     if route == "/sweep":
         body["velocities"] = [8.0, 10.0]
         body["flight"].pop("velocity")
-    response = client.post(route, json=body)
+    response = in_process.post(route, json=body)
     assert response.status_code == 422, response.text
     (error,) = response.json()["errors"]
     assert error["field"] == "options.chordwise_panels"

@@ -163,3 +163,11 @@ def test_zero_alpha_carries_no_lift(client: httpx.Client) -> None:
     assert result["totals"]["lift"] == 0.0
     assert result["totals"]["rigid_lift"] == 0.0
     assert result["totals"]["lift_amplification"] is None
+
+
+def test_evenly_spaced_stations_from_the_semispan(client: httpx.Client) -> None:
+    body = study.solve_request(10.0)
+    body["wing"]["y"] = {"semispan": 5.0, "stations": 30}
+    response = client.post("/solve", json=body)
+    assert response.status_code == 200
+    assert response.json()["totals"]["lift"] == pytest.approx(304.13, abs=0.01)

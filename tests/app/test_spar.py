@@ -73,8 +73,10 @@ def test_without_a_spar_the_stresses_are_null(client: httpx.Client):
         ),
     ],
 )
-def test_a_spar_that_cannot_be_built_is_a_422_naming_the_field(client: httpx.Client, wing, field):
-    response = client.post(
+def test_a_spar_that_cannot_be_built_is_a_422_naming_the_field(
+    in_process: httpx.Client, wing, field
+):
+    response = in_process.post(
         "/solve", json={"wing": wing, "flight": {"velocity": 10.0, "alpha": 3.0}}
     )
     assert response.status_code == 422, response.text

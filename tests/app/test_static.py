@@ -84,9 +84,9 @@ def test_modules_import_only_files_of_the_app(client: httpx.Client) -> None:
             assert client.get(f"/static/js/{target[2:]}").status_code == 200
 
 
-def test_redoc_is_gone_and_the_page_routes_are_not_in_the_api(client: httpx.Client) -> None:
-    assert client.get("/redoc").status_code == 404
-    paths = client.get("/openapi.json").json()["paths"]
+def test_redoc_is_gone_and_the_page_routes_are_not_in_the_api(in_process: httpx.Client) -> None:
+    assert in_process.get("/redoc").status_code == 404
+    paths = in_process.get("/openapi.json").json()["paths"]
     assert not {"/", "/docs", "/static"} & set(paths)
 
 

@@ -105,9 +105,9 @@ def test_a_trimmed_sweep_reports_alpha_and_the_trimmed_divergence_limit(client: 
     ],
 )
 def test_a_flight_given_any_other_way_is_a_422_naming_the_field(
-    client: httpx.Client, flight: dict[str, Any], field: str
+    in_process: httpx.Client, flight: dict[str, Any], field: str
 ):
-    response = client.post("/solve", json=_request(flight))
+    response = in_process.post("/solve", json=_request(flight))
     assert response.status_code == 422, response.text
     assert response.headers["content-type"].startswith("application/problem+json")
     fields = [error["field"] for error in response.json()["errors"]]
@@ -116,9 +116,9 @@ def test_a_flight_given_any_other_way_is_a_422_naming_the_field(
         assert "exactly one of alpha" in response.text
 
 
-def test_a_starting_deformation_with_a_trimmed_flight_is_a_422(client: httpx.Client):
+def test_a_starting_deformation_with_a_trimmed_flight_is_a_422(in_process: httpx.Client):
     guess = {"heave": [0.0] * 30, "twist": [0.0] * 30}
-    response = client.post(
+    response = in_process.post(
         "/solve", json=_request({"velocity": 10.0, "lift": WEIGHT}, initial_guess=guess)
     )
     assert response.status_code == 422

@@ -119,13 +119,13 @@ def test_the_wings_cl_max_one_number_or_per_station(client: httpx.Client):
     ],
 )
 def test_bad_limits_are_invalid_input(
-    client: httpx.Client, wing: dict[str, Any], options: dict[str, Any] | None, field: str
+    in_process: httpx.Client, wing: dict[str, Any], options: dict[str, Any] | None, field: str
 ):
     request = study.solve_request(10.0)
     body = request | {"wing": request["wing"] | wing}
     if options is not None:
         body["options"] = options
-    response = client.post("/solve", json=body)
+    response = in_process.post("/solve", json=body)
     assert response.status_code == 422, response.text
     assert field in [e["field"] for e in response.json()["errors"]]
 

@@ -27,6 +27,7 @@ def _same(a: solver.Equilibrium, b: solver.Equilibrium) -> None:
     assert a.totals == b.totals and a.stability == b.stability
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_an_answer_is_the_same_in_a_fresh_process_and_after_many_unrelated_requests(small_budget):
     """Bit for bit: every cache entry is a deterministic function of its key."""
     wing, condition = study_wing(), flight(17.0)

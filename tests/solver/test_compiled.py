@@ -42,6 +42,7 @@ def _random_state(n: int) -> np.ndarray:
     return np.random.default_rng(7).normal(scale=0.02, size=Layout(n).n_unknowns)
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cache: Path) -> None:
     model = model_for(Layout(N_SMALL))
     # No library yet: the model must answer now, from CasADi's virtual machine.
@@ -60,6 +61,7 @@ def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cach
     assert "ffp_contract=off" in name
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_compiled_code_and_virtual_machine_are_bit_identical(private_cache: Path) -> None:
     """Same operations in the same order, no multiply-add contraction: the same bits, so an
     answer never depends on whether the library had been compiled yet."""
@@ -109,6 +111,7 @@ def test_the_jacobians_are_whole_fortran_ordered_and_owned_by_the_caller(
     assert np.any(first.jacobian1[layout.load_rows] != 0.0)
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_a_new_process_loads_the_library_from_disk(private_cache: Path) -> None:
     model_for(Layout(N_SMALL)).wait_compiled(timeout=120)
     probe = (
@@ -131,6 +134,7 @@ def test_compilation_can_be_switched_off(
     assert not list(private_cache.glob("*.so"))
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache: Path) -> None:
     # The first use starts the compile in the background; the process then exits at once.
     probe = (
@@ -151,6 +155,7 @@ def test_a_process_that_exits_mid_compile_still_leaves_the_library(private_cache
     assert not list(private_cache.glob("build-*"))
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_a_process_that_lost_the_compile_lock_loads_the_winners_library(
     private_cache: Path,
 ) -> None:
@@ -171,6 +176,7 @@ def test_a_process_that_lost_the_compile_lock_loads_the_winners_library(
     assert model_for(layout).compiled
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_waiting_for_a_library_another_process_compiles_ends_at_the_timeout(
     private_cache: Path,
 ) -> None:

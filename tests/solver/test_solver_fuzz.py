@@ -51,6 +51,9 @@ from tests.conftest import fuzz_examples
 from tests.strategies import alphas, densities, ratios, speed_for, wings
 from tests.study import study_wing
 
+# Run with the live-server tests, after the fast loop: hundreds of random wings on the VM.
+pytestmark = pytest.mark.server
+
 HANG_SECONDS = 120.0
 OPTIONS = SolverOptions()
 # Reported arrays over stations and panels, and scalars, that must be finite.

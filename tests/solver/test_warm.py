@@ -21,6 +21,7 @@ def private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[P
     clear_caches()
 
 
+@pytest.mark.server  # compiles, or starts a process
 def test_warming_compiles_the_mesh_and_says_so(private_cache: Path, monkeypatch) -> None:
     monkeypatch.setenv("FLEXWING_COMPILE", "1")
     assert warm_up(N_SMALL, timeout=120) is True

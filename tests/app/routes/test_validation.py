@@ -1,4 +1,5 @@
-"""Every kind of bad input gets its 4xx as RFC 9457 problem+json naming the field and why."""
+"""Every kind of bad input gets its 4xx as RFC 9457 problem+json naming the field and why, in
+process: validation needs no worker (`in_process`, tests/app/conftest.py)."""
 
 from __future__ import annotations
 
@@ -32,51 +33,53 @@ def _with_wing(**changes: Any) -> dict[str, Any]:
     return body
 
 
-def _invalid(client: httpx.Client, body: Any, path: str = "/solve") -> dict[str, str]:
-    response = client.post(path, json=body)
+def _invalid(in_process: httpx.Client, body: Any, path: str = "/solve") -> dict[str, str]:
+    response = in_process.post(path, json=body)
     return _fields(_problem(response, 422, "invalid-input"))
 
 
-def test_non_finite_numbers(client: httpx.Client) -> None:
+def test_non_finite_numbers(in_process: httpx.Client) -> None:
     chord = study.wing_json()["chord"]
     text = json.dumps(_with_wing(chord=chord)).replace(str(chord[3]), "NaN", 1)
     text = text.replace(str(chord[7]), "Infinity", 1).replace(str(chord[9]), "1e999", 1)
-    response = client.post("/solve", content=text, headers={"content-type": "application/json"})
+    response = in_process.post("/solve", content=text, headers={"content-type": "application/json"})
     fields = _fields(_problem(response, 422, "invalid-input"))
     assert set(fields) == {"wing.chord[3]", "wing.chord[7]", "wing.chord[9]"}
     assert all("finite" in reason for reason in fields.values())
 
 
-def test_non_increasing_y(client: httpx.Client) -> None:
+def test_non_increasing_y(in_process: httpx.Client) -> None:
     y = study.wing_json()["y"]
     y[5], y[6] = y[6], y[5]
-    assert _invalid(client, _with_wing(y=y)) == {"wing.y": "stations must be strictly increasing"}
+    assert _invalid(in_process, _with_wing(y=y)) == {
+        "wing.y": "stations must be strictly increasing"
+    }
 
 
-def test_root_not_at_zero(client: httpx.Client) -> None:
+def test_root_not_at_zero(in_process: httpx.Client) -> None:
     y = [v + 0.1 for v in study.wing_json()["y"]]
-    fields = _invalid(client, _with_wing(y=y))
+    fields = _invalid(in_process, _with_wing(y=y))
     assert list(fields) == ["wing.y"]
     assert "y[0] = 0" in fields["wing.y"]
 
 
-def test_mismatched_lengths(client: httpx.Client) -> None:
+def test_mismatched_lengths(in_process: httpx.Client) -> None:
     fields = _invalid(
-        client, _with_wing(bending_stiffness=study.wing_json()["bending_stiffness"][:-1])
+        in_process, _with_wing(bending_stiffness=study.wing_json()["bending_stiffness"][:-1])
     )
     assert fields == {"wing.bending_stiffness": "has 29 values but y has 30 stations"}
 
 
-def test_mismatched_elastic_axis_list(client: httpx.Client) -> None:
-    fields = _invalid(client, _with_wing(elastic_axis=[0.4] * 3))
+def test_mismatched_elastic_axis_list(in_process: httpx.Client) -> None:
+    fields = _invalid(in_process, _with_wing(elastic_axis=[0.4] * 3))
     assert fields == {"wing.elastic_axis": "has 3 values but y has 30 stations"}
 
 
-def test_non_positive_chord_and_stiffness(client: httpx.Client) -> None:
+def test_non_positive_chord_and_stiffness(in_process: httpx.Client) -> None:
     w = study.wing_json()
     chord, gj = w["chord"], w["torsional_stiffness"]
     chord[0], gj[4], gj[5] = 0.0, -1.0, 0.0
-    fields = _invalid(client, _with_wing(chord=chord, torsional_stiffness=gj))
+    fields = _invalid(in_process, _with_wing(chord=chord, torsional_stiffness=gj))
     assert set(fields) == {
         "wing.chord[0]",
         "wing.torsional_stiffness[4]",
@@ -100,17 +103,17 @@ def test_non_positive_chord_and_stiffness(client: httpx.Client) -> None:
     ],
 )
 def test_a_number_outside_the_published_limits_is_invalid_input(
-    client: httpx.Client, flight: dict, field: str
+    in_process: httpx.Client, flight: dict, field: str
 ) -> None:
     """Found by schema fuzzing with another seed: density 5e-324 got HTTP 500 (ZeroDivisionError).
     The limits are in the OpenAPI document (minimum, maximum) and enforced before any solve."""
     body = study.solve_request(10.0)
     body["flight"] |= flight
-    fields = _invalid(client, body)
+    fields = _invalid(in_process, body)
     assert list(fields) == [field]
 
 
-def test_a_sweep_of_denormal_airspeeds_is_invalid_input(client: httpx.Client) -> None:
+def test_a_sweep_of_denormal_airspeeds_is_invalid_input(in_process: httpx.Client) -> None:
     """Found by schema fuzzing with another seed: velocities {start: 5e-324, stop: 5e-324,
     count: 2} got HTTP 500."""
     body = {
@@ -118,31 +121,25 @@ def test_a_sweep_of_denormal_airspeeds_is_invalid_input(client: httpx.Client) ->
         "flight": {"alpha": 5.0},
         "velocities": {"start": 5e-324, "stop": 5e-324, "count": 2},
     }
-    assert set(_invalid(client, body, "/sweep")) == {"velocities.start", "velocities.stop"}
+    assert set(_invalid(in_process, body, "/sweep")) == {"velocities.start", "velocities.stop"}
 
 
-def test_stiffness_beyond_the_published_limit_is_invalid_input(client: httpx.Client) -> None:
-    assert list(_invalid(client, _with_wing(bending_stiffness=1e13))) == ["wing.bending_stiffness"]
+def test_stiffness_beyond_the_published_limit_is_invalid_input(in_process: httpx.Client) -> None:
+    assert list(_invalid(in_process, _with_wing(bending_stiffness=1e13))) == [
+        "wing.bending_stiffness"
+    ]
 
 
-def test_stations_closer_than_the_limit_are_invalid_input(client: httpx.Client) -> None:
+def test_stations_closer_than_the_limit_are_invalid_input(in_process: httpx.Client) -> None:
     y = study.wing_json()["y"]
     y[1] = 1e-5
-    fields = _invalid(client, _with_wing(y=y))
+    fields = _invalid(in_process, _with_wing(y=y))
     assert list(fields) == ["wing.y"] and "0.0001 of the semispan" in fields["wing.y"]
 
 
-def test_evenly_spaced_stations_from_the_semispan(client: httpx.Client) -> None:
-    body = study.solve_request(10.0)
-    body["wing"]["y"] = {"semispan": 5.0, "stations": 30}
-    response = client.post("/solve", json=body)
-    assert response.status_code == 200
-    assert response.json()["totals"]["lift"] == pytest.approx(304.13, abs=0.01)
-
-
-def test_too_few_and_too_many_stations(client: httpx.Client) -> None:
+def test_too_few_and_too_many_stations(in_process: httpx.Client) -> None:
     few = {k: (v[:2] if isinstance(v, list) else v) for k, v in study.wing_json().items()}
-    fields = _invalid(client, _with_wing(**few))
+    fields = _invalid(in_process, _with_wing(**few))
     assert set(fields) == {
         "wing.y",
         "wing.chord",
@@ -157,49 +154,49 @@ def test_too_few_and_too_many_stations(client: httpx.Client) -> None:
         "bending_stiffness": [1e4] * n,
         "torsional_stiffness": [1e3] * n,
     }
-    fields = _invalid(client, _with_wing(**many))
+    fields = _invalid(in_process, _with_wing(**many))
     assert list(fields) == ["wing.y"]
     assert "at most 150" in fields["wing.y"]
 
 
-def test_bad_flight_condition(client: httpx.Client) -> None:
+def test_bad_flight_condition(in_process: httpx.Client) -> None:
     body = study.solve_request(10.0)
     body["flight"] = {"velocity": 0, "alpha": 95, "density": -1}
-    fields = _invalid(client, body)
+    fields = _invalid(in_process, body)
     assert set(fields) == {"flight.velocity", "flight.alpha", "flight.density"}
 
 
-def test_too_many_velocities(client: httpx.Client) -> None:
+def test_too_many_velocities(in_process: httpx.Client) -> None:
     body = {"wing": study.wing_json(), "flight": {"alpha": 5}, "velocities": [10.0] * 51}
-    fields = _invalid(client, body, "/sweep")
+    fields = _invalid(in_process, body, "/sweep")
     assert list(fields) == ["velocities"]
     assert "1 to 50" in fields["velocities"]
     body["velocities"] = {"start": 5, "stop": 10, "count": 10**9}
-    assert list(_invalid(client, body, "/sweep")) == ["velocities.count"]
+    assert list(_invalid(in_process, body, "/sweep")) == ["velocities.count"]
     body["velocities"] = [10, -1]
-    assert list(_invalid(client, body, "/sweep")) == ["velocities[1]"]
+    assert list(_invalid(in_process, body, "/sweep")) == ["velocities[1]"]
 
 
-def test_wrong_types_unknown_fields_and_missing_fields(client: httpx.Client) -> None:
+def test_wrong_types_unknown_fields_and_missing_fields(in_process: httpx.Client) -> None:
     body = _with_wing(elastic_axis=[0.4, "a"])
     body["flght"] = {}
     del body["flight"]
-    fields = _invalid(client, body)
+    fields = _invalid(in_process, body)
     assert set(fields) == {"wing.elastic_axis[1]", "flght", "flight"}
 
 
-def test_initial_guess_of_the_wrong_length(client: httpx.Client) -> None:
+def test_initial_guess_of_the_wrong_length(in_process: httpx.Client) -> None:
     body = study.solve_request(10.0, initial_guess={"heave": [0.0] * 29, "twist": [0.0] * 30})
-    assert _invalid(client, body) == {"initial_guess.heave": "has 29 values but y has 30"}
+    assert _invalid(in_process, body) == {"initial_guess.heave": "has 29 values but y has 30"}
 
 
-def test_invalid_options(client: httpx.Client) -> None:
+def test_invalid_options(in_process: httpx.Client) -> None:
     body = study.solve_request(10.0, options={"tolerance": 0, "max_iterations": 0})
-    assert set(_invalid(client, body)) == {"options.tolerance", "options.max_iterations"}
+    assert set(_invalid(in_process, body)) == {"options.tolerance", "options.max_iterations"}
 
 
-def test_invalid_json(client: httpx.Client) -> None:
-    response = client.post(
+def test_invalid_json(in_process: httpx.Client) -> None:
+    response = in_process.post(
         "/solve", content=b"{not json", headers={"content-type": "application/json"}
     )
     fields = _fields(_problem(response, 422, "invalid-input"))
@@ -207,41 +204,45 @@ def test_invalid_json(client: httpx.Client) -> None:
     assert fields["body"].startswith("invalid JSON")
 
 
-def test_a_body_that_is_not_utf8(client: httpx.Client) -> None:
-    response = client.post("/solve", content=b"\xff", headers={"content-type": "application/json"})
+def test_a_body_that_is_not_utf8(in_process: httpx.Client) -> None:
+    response = in_process.post(
+        "/solve", content=b"\xff", headers={"content-type": "application/json"}
+    )
     fields = _fields(_problem(response, 422, "invalid-input"))
     assert list(fields) == ["body"]
     assert fields["body"].startswith("invalid JSON")
 
 
-def test_oversized_body_declared(client: httpx.Client) -> None:
-    response = client.post("/solve", content=b" " * 1_000_001)  # default limit: 1,000,000 bytes
+def test_oversized_body_declared(in_process: httpx.Client) -> None:
+    response = in_process.post("/solve", content=b" " * 1_000_001)  # default limit: 1,000,000 bytes
     problem = _problem(response, 413, "body-too-large")
     assert problem["max_body_bytes"] == 1_000_000
 
 
-def test_oversized_body_streamed(client: httpx.Client) -> None:
+def test_oversized_body_streamed(in_process: httpx.Client) -> None:
     def chunks() -> Iterator[bytes]:
         for _ in range(20):
             yield b" " * 100_000
 
-    response = client.post("/solve", content=chunks())  # chunked: no Content-Length
+    response = in_process.post("/solve", content=chunks())  # chunked: no Content-Length
     _problem(response, 413, "body-too-large")
 
 
-def test_a_body_under_the_limit_passes_the_streamed_check(client: httpx.Client) -> None:
+def test_a_body_under_the_limit_passes_the_streamed_check(in_process: httpx.Client) -> None:
     body = json.dumps(study.solve_request(10.0)).encode()
 
     def chunks() -> Iterator[bytes]:
         yield from (body[i : i + 1000] for i in range(0, len(body), 1000))
 
-    response = client.post("/solve", content=chunks(), headers={"content-type": "application/json"})
-    assert response.status_code == 200
+    headers = {"content-type": "application/json"}
+    response = in_process.post("/solve", content=chunks(), headers=headers)
+    # Past the body limit and validation, it reaches the pool: not started in process.
+    _problem(response, 503, "not-ready")
 
 
-def test_unknown_path_and_method(client: httpx.Client) -> None:
-    _problem(client.get("/nowhere"), 404, "not-found")
-    _problem(client.get("/solve"), 405, "method-not-allowed")
+def test_unknown_path_and_method(in_process: httpx.Client) -> None:
+    _problem(in_process.get("/nowhere"), 404, "not-found")
+    _problem(in_process.get("/solve"), 405, "method-not-allowed")
 
 
 @pytest.mark.parametrize(
@@ -254,18 +255,18 @@ def test_unknown_path_and_method(client: httpx.Client) -> None:
     ids=["solve", "jobs", "one-job"],
 )
 def test_a_405_lists_every_method_the_path_serves(
-    client: httpx.Client, method: str, path: str, allowed: set[str]
+    in_process: httpx.Client, method: str, path: str, allowed: set[str]
 ) -> None:
     # RFC 9110 15.5.6: Allow lists the target's methods, whichever route serves each of them
     # (HEAD comes with GET).
-    response = client.request(method, path)
+    response = in_process.request(method, path)
     _problem(response, 405, "method-not-allowed")
     listed = {m.strip() for m in response.headers["allow"].split(",")}
     assert listed - {"HEAD"} == allowed
 
 
-def test_problem_types_are_described(client: httpx.Client) -> None:
-    response = client.get("/problems/no-equilibrium")
+def test_problem_types_are_described(in_process: httpx.Client) -> None:
+    response = in_process.get("/problems/no-equilibrium")
     assert response.status_code == 200
     assert response.json()["status"] == 422
-    _problem(client.get("/problems/nonsense"), 404, "not-found")
+    _problem(in_process.get("/problems/nonsense"), 404, "not-found")
