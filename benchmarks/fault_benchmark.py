@@ -1,4 +1,4 @@
-"""Faults under traffic, the long form of tests/app/test_fault_injection.py.
+"""Faults under traffic, the long form of tests/app/execution/test_fault_injection.py.
 
     .venv/bin/python benchmarks/fault_benchmark.py [--seconds 60] [--interval 3] [--clients 8]
         [--json results.json]
@@ -42,7 +42,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from load_benchmark import local_server_process  # noqa: E402
 
-from tests.app.test_fault_injection import alive, kill, solve_body  # noqa: E402
+from tests.app.execution.test_fault_injection import alive, kill, solve_body  # noqa: E402
 
 TIMEOUT = 120.0
 

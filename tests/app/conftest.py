@@ -5,8 +5,8 @@ disk cache, FLEXWING_CACHE_DIR, if it is not there yet).
 `fault_server`: 2 workers on CasADi's virtual machine (no compilation, a private cache dir), with
 short limits, for the tests that kill workers, overrun budgets and overload the pool.
 Servers run with the defaults, so without API keys they have no rate limit (the load, fuzz and
-fault tests measure the service from one address, not the limiter); tests/app/test_security.py
-tests the limiter, with its defaults under keys too.
+fault tests measure the service from one address, not the limiter);
+tests/app/security/test_access.py tests the limiter, with its defaults under keys too.
 """
 
 from __future__ import annotations

@@ -1,14 +1,15 @@
 """Faults under traffic (issue 5, part 5): workers killed with SIGKILL again and again while
 requests are in flight, a solve past its time budget, and a graceful shutdown (SIGTERM).
 
-(tests/app/test_faults.py covers single kills on an idle or single-request server, the sweep
-budget and overload; this module adds concurrent traffic, repetition, the /solve budget and
-SIGTERM.) Each module-local server runs on CasADi's virtual machine, where a 120-station solve
-takes a few hundred milliseconds: long enough to be caught mid-flight by a kill.
+(tests/app/execution/test_processes.py covers single kills on an idle or single-request server,
+the sweep budget and overload; this module adds concurrent traffic, repetition, the /solve
+budget and SIGTERM.) Each module-local server runs on CasADi's virtual machine, where a
+120-station solve takes a few hundred milliseconds: long enough to be caught mid-flight by a
+kill.
 
 Correct answers are known in advance: the same requests are solved in this process by the same
 solver (cold starts); the server may warm-start from its state cache, so results are compared to
-WARM_VS_COLD (see tests/app/test_determinism.py), far below the solver's accuracy claim.
+WARM_VS_COLD (see tests/app/test_service.py), far below the solver's accuracy claim.
 """
 
 from __future__ import annotations

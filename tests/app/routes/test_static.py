@@ -1,5 +1,6 @@
 """The page's files, without a browser: served from the app, no inline code, licences beside the
-vendored libraries, a strict Content-Security-Policy. (tests/app/test_page.py runs the page.)"""
+vendored libraries, a strict Content-Security-Policy (tests/app/routes/test_page.py runs the
+page)."""
 
 from __future__ import annotations
 

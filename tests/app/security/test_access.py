@@ -42,7 +42,7 @@ from app.settings import Settings
 from openapi.generate import PATH as OPENAPI_PATH
 from tests import study
 from tests.app.conftest import Server
-from tests.app.test_operations import generated_client  # noqa: F401 (a fixture)
+from tests.app.routes.test_health import generated_client  # noqa: F401 (a fixture)
 
 ORIGIN = "https://wings.example.org"  # the one origin keyed_server lets call it
 HANG_GUARD = 120.0  # [s] only a hang fails on it
@@ -663,7 +663,7 @@ def test_a_generated_client_carries_the_key(
     keyed_server: Server,
     keys: Keys,
 ) -> None:
-    # The client is generated when the fixture runs (as in tests/app/test_operations.py).
+    # The client is generated when the fixture runs (as in tests/app/routes/test_health.py).
     from flexwing_client import AuthenticatedClient, Client  # type: ignore[import-not-found]
     from flexwing_client.api.equilibrium import solve  # type: ignore[import-not-found]
     from flexwing_client.models import (  # type: ignore[import-not-found]

@@ -1,7 +1,7 @@
 """The page and the documentation in a real browser when the service has API keys (issue 16):
 the page asks for a key, refuses a wrong one, and with the right one solves and sweeps; Swagger
 UI takes a key through Authorize. Both under the strict Content-Security-Policy, nothing loaded
-from elsewhere. (tests/app/test_page.py drives the page without keys.)"""
+from elsewhere. (tests/app/routes/test_page.py drives the page without keys.)"""
 
 from __future__ import annotations
 
@@ -12,9 +12,9 @@ from playwright.sync_api import Browser
 
 from app.security.keys import add_key
 from tests.app.conftest import Server
-from tests.app.test_page import Visit, browser, pytestmark, visits
+from tests.app.routes.test_page import Visit, browser, pytestmark, visits
 
-__all__ = ["browser", "pytestmark"]  # the fixture and the marks of tests/app/test_page.py
+__all__ = ["browser", "pytestmark"]  # the fixture and the marks of tests/app/routes/test_page.py
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """Token buckets (`app.security.ratelimit`), on a clock the test advances: a client may send its
 burst at once and its rate for ever, never more; clients do not share buckets (an IPv6 /64 is one
-client). tests/app/test_security.py tests the limit over HTTP."""
+client). tests/app/security/test_access.py tests the limit over HTTP."""
 
 from __future__ import annotations
 
