@@ -461,6 +461,10 @@ class SolverOptions:
     safety_factor: [-] 1 to 10, what a spar's failure margin asks of it (`Totals`).
     validity: the limits the answer's validity is judged against (`ValidityLimits`); they
         change what is said about the answer, never its numbers.
+    aerodynamics: "lattice" (the horseshoe vortex lattice, the study's) or "strip" (strip
+        theory: each strip a two-dimensional airfoil, lift slope 2 pi, no induced velocities
+        from the other strips or the wake; the model of the classical divergence and flutter
+        results). Every operation runs on either.
     """
 
     tolerance: float = 1e-10
@@ -470,6 +474,7 @@ class SolverOptions:
     torque_axis: Literal["undeformed", "deformed"] = "undeformed"
     safety_factor: float = 1.0
     validity: ValidityLimits = field(default_factory=ValidityLimits)
+    aerodynamics: Literal["lattice", "strip"] = "lattice"
 
     def __post_init__(self) -> None:
         if not (_is_number(self.tolerance) and 0 < self.tolerance < 1):
@@ -487,3 +492,5 @@ class SolverOptions:
             raise InvalidInput("safety_factor", "must be a number from 1 to 10")
         if not isinstance(self.validity, ValidityLimits):
             raise InvalidInput("validity", "must be a solver.ValidityLimits")
+        if self.aerodynamics not in ("lattice", "strip"):
+            raise InvalidInput("aerodynamics", "must be 'lattice' or 'strip'")
