@@ -17,6 +17,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["errors"],
     ["fields"],
     ["airfoil", "spar"],
+    ["mass"],
     ["inputs", "layout"],
     ["geometry"],
     ["vlm"],
@@ -26,8 +27,8 @@ SOLVER_LAYERS: list[list[str]] = [
     ["newton", "stability", "continuation"],
     ["path"],
     ["results"],
-    ["cache"],
-    ["system"],
+    ["cache", "flutter_results"],
+    ["system", "modes"],
     ["loads"],
     ["jig"],
     ["branch", "validity"],
@@ -35,7 +36,8 @@ SOLVER_LAYERS: list[list[str]] = [
     ["divergence", "recovery"],
     ["solve"],
     ["sweep", "trim", "optimize"],
-    ["warm"],
+    ["warm", "unsteady"],
+    ["flutter"],
     ["__init__"],
 ]
 
