@@ -188,6 +188,16 @@ class _Reduced:
             semichord=semichord,
         )
 
+    def divergence_rate(self, velocity: float, density: float) -> float | None:
+        """[1/s] the largest real root of the equations at zero reduced frequency (C = 1, the
+        p-k root of a non-oscillating motion), or None when they have no real root; positive
+        beyond divergence. At s = 0 the equations are the static model's, K w = q Q w."""
+        if velocity == 0:
+            return None
+        roots = self.roots(np.zeros(1), velocity, density, False)[0]
+        real = roots[np.abs(roots.imag) <= _OSCILLATING * np.abs(roots)].real
+        return float(real.max()) if real.size else None
+
     def blend(self, other: _Reduced, weight: float) -> _Reduced:
         """The equations (1 - weight) self + weight other (the same basis and strips)."""
         names = [name for name in self.__dataclass_fields__ if name != "semichord"]
@@ -458,6 +468,7 @@ class _Tracked:
     roots: list[np.ndarray | None]
     reasons: list[str | None]
     iterations: int
+    divergence_rates: list[float | None]
 
 
 def _follow(
@@ -479,28 +490,32 @@ def _follow(
     roots: list[np.ndarray | None] = []
     reasons: list[str | None] = []
     scale = float(basis.vacuum.min())
+    rates: list[float | None] = []
     rest = _reduced_at(beam, basis, states, 0.0)
     follow = _Follower(rest, density, settings, scale)
     unloaded = _Follower(rest, density, settings, scale)
     for velocity in (float(v) for v in grid):
-        reason = None
+        reason, rate = None, None
         try:
             if states.about == "jig":
                 current: np.ndarray | None = follow.step(rest, velocity)
+                rate = rest.divergence_rate(velocity, density)
             else:
                 unloaded.step(rest, velocity)
                 loaded = _reduced_at(beam, basis, states, velocity)
                 current = follow.step(loaded, velocity, start=unloaded)
+                rate = loaded.divergence_rate(velocity, density)
         except SolverError as error:
             current, reason = None, str(error)
             follow.history.clear()
         roots.append(current)
         reasons.append(reason)
+        rates.append(rate)
         if velocity in requested:
             done += 1
             if progress is not None:
                 progress(done, total)
-    return _Tracked(grid, roots, reasons, follow.solves + unloaded.solves)
+    return _Tracked(grid, roots, reasons, follow.solves + unloaded.solves, rates)
 
 
 _BLEND_STEPS = 4
@@ -675,7 +690,13 @@ def _result(
         if roots is None:
             points.append(
                 FlutterPoint(
-                    float(velocity), q, "no_equilibrium", None, None, None, tracked.reasons[i]
+                    float(velocity),
+                    q,
+                    "no_equilibrium",
+                    None,
+                    None,
+                    None,
+                    reason=tracked.reasons[i],
                 )
             )
             table.append(np.full(basis.vacuum.shape, np.nan + 0j))
@@ -689,6 +710,7 @@ def _result(
                 frequency,
                 _damping(roots),
                 frequency * semichord / float(velocity),
+                divergence_rate=tracked.divergence_rates[i],
             )
         )
         table.append(roots)

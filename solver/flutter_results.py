@@ -84,6 +84,13 @@ class FlutterPoint:
     reduced_frequency: np.ndarray | None = quantity(
         "-", "each mode's frequency times the reference semichord over the airspeed"
     )
+    divergence_rate: float | None = quantity(
+        "1/s",
+        "the largest real root of the equations at zero frequency (a non-oscillating motion, "
+        "the circulation without lag): positive where the wing diverges statically, zero at "
+        "divergence; null when they have no real root (every motion oscillates)",
+        default=None,
+    )
     reason: str | None = quantity("", "why there are no roots, else null", default=None)
 
 

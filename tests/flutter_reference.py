@@ -61,13 +61,14 @@ class UniformWing:
     store_mass: float = 0.0  # [kg]
     store_offset: float = 0.0  # [m] aft of the elastic axis
     store_inertia: float = 0.0  # [kg m^2] about the store's own centre of gravity
+    quasi_steady: bool = False  # C = 1: no wake lag
 
     def root_matrix(self, s: complex, velocity: float, density: float) -> np.ndarray:
         """(3, 3) whose determinant vanishes at a root s."""
         a_matrix = np.zeros((6, 6), dtype=complex)
         a_matrix[0, 1] = a_matrix[1, 2] = a_matrix[2, 3] = a_matrix[4, 5] = 1.0
         (lift_h, lift_a), (moment_h, moment_a) = _theodorsen_loads(
-            s, velocity, density, self.semichord, self.a
+            s, velocity, density, self.semichord, self.a, not self.quasi_steady
         )
         ei, gj = self.bending_stiffness, self.torsional_stiffness
         # EI h'''' = L - s^2 (m h - S alpha);  GJ alpha'' = s^2 (-S h + I alpha) - M
@@ -119,13 +120,16 @@ class UniformWing:
 
 
 def _theodorsen_loads(
-    s: complex, velocity: float, density: float, b: float, a: float
+    s: complex, velocity: float, density: float, b: float, a: float, lagged: bool = True
 ) -> tuple[tuple[complex, complex], tuple[complex, complex]]:
-    """Lift and moment per unit h and alpha (Theodorsen 1935), the lag at k = Im(s) b / V."""
-    if velocity > 0:
+    """Lift and moment per unit h and alpha (Theodorsen 1935), the lag at k = Im(s) b / V
+    (none, C = 1, unless `lagged`)."""
+    if velocity > 0 and not lagged:
+        lag: complex | float = 1.0
+    elif velocity > 0:
         k = abs(s.imag) * b / velocity
         h1, h0 = scipy.special.hankel2(1, k), scipy.special.hankel2(0, k)
-        lag = h1 / (h1 + 1j * h0)
+        lag = complex(h1 / (h1 + 1j * h0))
     else:
         lag = 0.0
     apparent = math.pi * density * b * b
