@@ -125,29 +125,14 @@ class FlutterOptions:
 
 @dataclass(frozen=True)
 class _Basis:
-    """The reduced degrees of freedom: w = right c, equations projected on left, columns in
-    ascending order of their frequency in vacuum."""
+    """The reduced degrees of freedom: w = right c, equations projected on left; the last
+    column, with `condensed`, the divergence shape's remainder (statically condensed)."""
 
     right: np.ndarray  # (n, r)
     left: np.ndarray  # (n, r)
-    vacuum: np.ndarray  # (r,) [rad/s] each basis vector's frequency in vacuum
+    vacuum: np.ndarray  # (modes,) [rad/s] the natural modes' frequencies in vacuum
     divergence_pressure: float | None  # [Pa] of the unloaded wing
-    divergence_shape: int | None  # the column of the divergence shape's remainder
-
-    def sorted(self) -> _Basis:
-        order = np.argsort(self.vacuum, kind="stable")
-        shape = (
-            None
-            if self.divergence_shape is None
-            else int(np.flatnonzero(order == self.divergence_shape)[0])
-        )
-        return _Basis(
-            self.right[:, order],
-            self.left[:, order],
-            self.vacuum[order],
-            self.divergence_pressure,
-            shape,
-        )
+    condensed: bool  # the last column is the divergence shape's remainder
 
 
 @dataclass(frozen=True)
@@ -169,6 +154,7 @@ class _Reduced:
     apparent_mass: np.ndarray  # (r, r)
     apparent_damping: np.ndarray  # (r, r)
     semichord: np.ndarray  # (groups,) [m]
+    condensed: bool  # the last degree of freedom is condensed statically (`_condense`)
 
     @classmethod
     def of(cls, beam: Structure, basis: _Basis, aero: UnsteadyAerodynamics) -> _Reduced:
@@ -186,6 +172,7 @@ class _Reduced:
             apparent_mass=left @ aero.apparent_mass @ right,
             apparent_damping=left @ aero.apparent_damping @ right,
             semichord=semichord,
+            condensed=basis.condensed,
         )
 
     def divergence_rate(self, velocity: float, density: float) -> float | None:
@@ -194,18 +181,27 @@ class _Reduced:
         beyond divergence. At s = 0 the equations are the static model's, K w = q Q w."""
         if velocity == 0:
             return None
-        roots = self.roots(np.zeros(1), velocity, density, False)[0]
+        q = 0.5 * density * velocity * velocity
+        # No lag: real coefficients, a real eigenvalue problem (half the work of a complex one).
+        stiffness = self.stiffness - q * (self.geometric + self.lagged_deformation.sum(axis=0).real)
+        damping = -(q / velocity) * self.lagged_motion.sum(axis=0).real
+        damping = damping - density * velocity * self.apparent_damping
+        mass = self.mass - density * self.apparent_mass
+        matrices = (mass[None], damping[None], stiffness[None])
+        if self.condensed:
+            matrices = _condense(*matrices)
+        roots = np.linalg.eigvals(_companion(*matrices))[0]
         real = roots[np.abs(roots.imag) <= _OSCILLATING * np.abs(roots)].real
         return float(real.max()) if real.size else None
 
     def blend(self, other: _Reduced, weight: float) -> _Reduced:
         """The equations (1 - weight) self + weight other (the same basis and strips)."""
-        names = [name for name in self.__dataclass_fields__ if name != "semichord"]
+        names = [n for n in self.__dataclass_fields__ if n not in ("semichord", "condensed")]
         mixed = {
             name: (1 - weight) * getattr(self, name) + weight * getattr(other, name)
             for name in names
         }
-        return _Reduced(**mixed, semichord=self.semichord)
+        return _Reduced(**mixed, semichord=self.semichord, condensed=self.condensed)
 
     def roots(
         self, frequency: np.ndarray, velocity: float, density: float, lagged: bool
@@ -223,12 +219,44 @@ class _Reduced:
         damping = np.broadcast_to(-density * velocity * self.apparent_damping, (t, r, r))
         if velocity > 0:
             damping = damping - (q / velocity) * np.tensordot(lag, self.lagged_motion, axes=1)
-        inverse = np.linalg.inv(self.mass - density * self.apparent_mass)
-        companion = np.zeros((t, 2 * r, 2 * r), dtype=complex)
-        companion[:, :r, r:] = np.eye(r)
-        companion[:, r:, :r] = -inverse @ stiffness
-        companion[:, r:, r:] = -inverse @ damping
-        return np.linalg.eigvals(companion)
+        mass = np.broadcast_to(self.mass - density * self.apparent_mass, (t, r, r))
+        if self.condensed:
+            mass, damping, stiffness = _condense(mass, damping, stiffness)
+        return np.linalg.eigvals(_companion(mass, damping, stiffness))
+
+
+def _condense(
+    mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(t, r - 1, r - 1) each: the equations with their last degree of freedom condensed
+    statically (Guyan): it follows the others as the stiffness says, c_last = T c, and its
+    equation is combined with theirs likewise. The condensed stiffness is the Schur
+    complement, singular exactly when the whole is: the static divergence is kept; the last
+    shape's own dynamics (a high-frequency remainder) are not, and it is no mode of its own."""
+    k_last = stiffness[:, -1, -1]
+    right = -stiffness[:, -1, :-1] / k_last[:, None]  # (t, r - 1)
+    left = -stiffness[:, :-1, -1] / k_last[:, None]
+
+    def apply(x: np.ndarray) -> np.ndarray:
+        return (
+            x[:, :-1, :-1]
+            + x[:, :-1, -1:] * right[:, None, :]
+            + left[:, :, None] * x[:, -1:, :-1]
+            + x[:, -1:, -1:] * left[:, :, None] * right[:, None, :]
+        )
+
+    return apply(mass), apply(damping), apply(stiffness)
+
+
+def _companion(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
+    """(t, 2r, 2r): the first-order form of (s^2 mass + s damping + stiffness) c = 0."""
+    t, r = stiffness.shape[0], stiffness.shape[1]
+    inverse = np.linalg.inv(mass)
+    companion = np.zeros((t, 2 * r, 2 * r), dtype=np.result_type(stiffness, damping, mass))
+    companion[:, :r, r:] = np.eye(r)
+    companion[:, r:, :r] = -inverse @ stiffness
+    companion[:, r:, r:] = -inverse @ damping
+    return companion
 
 
 def _closest(candidates: np.ndarray, guesses: np.ndarray) -> np.ndarray:
@@ -296,23 +324,22 @@ def _basis(beam: Structure, aero: UnsteadyAerodynamics, q_div: float | None, cou
     right, left = right[:, :count], left[:, :count]
     vacuum = np.sqrt(omega2[:count])
     if q_div is None:
-        return _Basis(right, left, vacuum, None, None)
+        return _Basis(right, left, vacuum, None, False)
     operator = beam.stiffness - q_div * aero.stiffness()
     u, _, vt = np.linalg.svd(operator)
     shape, left_shape = vt[-1], u[:, -1]
     remainder = shape - right @ (left.T @ beam.mass @ shape)
     if np.linalg.norm(remainder) <= _INSIDE_SPAN * np.linalg.norm(shape):
-        return _Basis(right, left, vacuum, q_div, None)
+        return _Basis(right, left, vacuum, q_div, False)
     left_remainder = left_shape - left @ (right.T @ beam.mass.T @ left_shape)
-    generalised = left_remainder @ beam.mass @ remainder
-    frequency = math.sqrt(abs((left_remainder @ beam.stiffness @ remainder) / generalised))
+    generalised = left_remainder @ beam.stiffness @ remainder
     return _Basis(
         np.column_stack([right, remainder]),
         np.column_stack([left, left_remainder / generalised]),
-        np.append(vacuum, frequency),
+        vacuum,
         q_div,
-        count,
-    ).sorted()
+        True,
+    )
 
 
 def _grid(velocities: np.ndarray) -> np.ndarray:
@@ -329,8 +356,8 @@ def _grid(velocities: np.ndarray) -> np.ndarray:
 
 
 def _still_air(reduced: _Reduced, density: float) -> np.ndarray:
-    """(r,) the roots at V = 0 (in still air, apparent mass only), one per basis vector: the
-    i-th lowest frequency to the basis vector of i-th lowest vacuum frequency."""
+    """(modes,) the roots at V = 0 (in still air, apparent mass only), one per natural mode:
+    the i-th lowest frequency to the i-th mode."""
     roots = reduced.roots(np.zeros(1), 0.0, density, False)[0]
     upper = roots[roots.imag > 0]
     return upper[np.argsort(upper.imag)]
@@ -547,7 +574,7 @@ class _Follower:
             for step in range(1, _BLEND_STEPS + 1):
                 roots = self._track(equations.blend(reduced, step / _BLEND_STEPS), roots, velocity)
         self.history.append((velocity, roots))
-        del self.history[:-2]
+        del self.history[:-3]
         self.equations = reduced
         return roots
 
@@ -571,11 +598,19 @@ def _reduced_at(beam: Structure, basis: _Basis, states: _States, velocity: float
 
 
 def _extrapolate(history: list[tuple[float, np.ndarray]], velocity: float) -> np.ndarray:
-    """The roots' start at `velocity`: linear extrapolation of the last two speeds' roots."""
+    """The roots' start at `velocity`: the parabola (or line) through the last three (two)
+    speeds' roots, extrapolated; a start below the real axis is taken as real."""
     if len(history) < 2:
         return history[-1][1].copy()
-    (v0, s0), (v1, s1) = history[-2], history[-1]
-    guess = s1 + (s1 - s0) * (velocity - v1) / (v1 - v0)
+    speeds = [v for v, _ in history[-3:]]
+    roots = [s for _, s in history[-3:]]
+    guess = np.zeros_like(roots[-1])
+    for i, (v_i, s_i) in enumerate(zip(speeds, roots, strict=True)):
+        weight = 1.0
+        for j, v_j in enumerate(speeds):
+            if j != i:
+                weight *= (velocity - v_j) / (v_i - v_j)
+        guess = guess + weight * s_i
     return np.where(guess.imag < 0, guess.real + 0j, guess)
 
 
@@ -719,7 +754,7 @@ def _result(
         states.divergence = _linear_onset(basis, density, float(speeds.max()))
     modes = [
         mode_shape(beam, basis.right[:, i], float(basis.vacuum[i]))
-        for i in range(basis.right.shape[1])
+        for i in range(basis.vacuum.size)
     ]
     solved = any(point.status == "solved" for point in points)
     no_flutter = None if onset is not None or not solved else _no_flutter(points, speeds)
@@ -732,7 +767,7 @@ def _result(
         no_flutter=no_flutter,
         divergence=states.divergence,
         modes=modes,
-        divergence_shape_mode=basis.divergence_shape,
+        static_correction=basis.condensed,
         points=points,
         y=wing.y,
         about=states.about,

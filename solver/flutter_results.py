@@ -162,13 +162,13 @@ class FlutterResult:
         "", "where the wing diverges (null: it cannot, or the loaded branch has no fold)"
     )
     modes: list[ModeShape] = quantity(
-        "",
-        "the modes tracked, lowest vacuum frequency first: the lowest natural modes and, when "
-        "the wing can diverge, the part of the unloaded wing's divergence shape outside them "
-        "(which makes the zero-frequency root the static divergence exactly)",
+        "", "the natural modes tracked (lowest frequency first), one root per airspeed each"
     )
-    divergence_shape_mode: int | None = quantity(
-        "-", "which of `modes` is that divergence shape's part (null: none is needed)"
+    static_correction: bool = quantity(
+        "",
+        "the part of the unloaded wing's divergence shape outside the modes is in the "
+        "solution too, condensed statically: the zero-frequency equations are then the static "
+        "model's exactly (false: the wing cannot diverge, or the modes hold that shape)",
     )
     points: list[FlutterPoint] = quantity("", "one per requested airspeed, in request order")
     y: np.ndarray = quantity("m", "station positions of the mode shapes")
