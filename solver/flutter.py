@@ -14,18 +14,22 @@ quadratic eigenvalue problem, solved exactly; k is updated from the root, to a f
 Its damping -Re(s) / |s| is exact where it matters, at zero (the flutter boundary, where the
 motion is harmonic), and an approximation (with C of the root's frequency) elsewhere.
 
-Degrees of freedom: the lowest natural modes (`FlutterOptions.modes`) and, when the wing can
-diverge, the part of the unloaded wing's static divergence shape outside them. With it the
-reduced equations keep the full model's static divergence exactly: at s = 0 they are
-K w = q Q w, and its solution at the divergence pressure lies in the basis. Every root is
-followed from its natural frequency in still air (V = 0) up the airspeeds, in steps no larger
-than a fortieth of the largest airspeed, each step's p-k started from the previous root.
+Degrees of freedom: the lowest natural modes (`FlutterOptions.modes`, six by default; the
+Goland wing's flutter speed moves by 5e-7 with every mode) and, when the wing can diverge, the
+part of the unloaded wing's static divergence shape outside them, condensed statically (it
+follows the modes as the stiffness says, `_condense`). With it the equations keep the full
+model's static divergence exactly: at s = 0 they are K w = q Q w, and its solution at the
+divergence pressure lies in the basis. One root is followed per mode, from its frequency in
+still air (V = 0) up the airspeeds, in steps no larger than a fortieth of the largest one, each
+step's p-k started from the roots extrapolated from the last three.
 
 - Flutter: the first airspeed at which an oscillating root's damping crosses from positive to
-  negative, located between the sweep's speeds by the secant method on Re(s).
-- Divergence: about the jig, the static linear divergence under the same aerodynamics (a real
-  root crosses zero there); about a loaded equilibrium, the static model's fold (at an angle of
-  attack) or trimmed stability limit (at a lift), where that equilibrium's own real root does.
+  negative, located between the sweep's speeds by the Illinois secant method on Re(s).
+- Divergence: the real roots of the zero-frequency equations (C = 1: a non-oscillating motion)
+  are computed at each airspeed too (`FlutterPoint.divergence_rate`); the largest crosses zero
+  where the wing diverges. About the jig that is the static linear divergence under the same
+  aerodynamics (the number reported); about a loaded equilibrium the static model's fold (at
+  an angle of attack) or trimmed stability limit (at a lift).
 
 About the jig the state is the unloaded wing at rest; "about an equilibrium" (`alpha` or `lift`)
 the state at each airspeed is the static equilibrium there (`solver.sweep`, `solver.trim`), its
@@ -693,7 +697,8 @@ def _locate(
         iterations += spent
         root = roots[mode]
         value = float(root.real)
-        if abs(high - low) <= _SPEED_TOLERANCE * high or value == 0.0:
+        converged = abs(value) <= _SPEED_TOLERANCE * abs(root)
+        if converged or abs(high - low) <= _SPEED_TOLERANCE * high:
             break
         if value > 0:
             high, f_high, s_high = velocity, value, roots
