@@ -682,9 +682,10 @@ def _locate(
     scale: float,
 ) -> tuple[float, complex, int, int]:
     """(speed, root, mode, iterations) where `mode`'s root crosses Re(s) = 0 in [low, high]:
-    the Illinois variant of the secant method (bracketing, superlinear)."""
+    the Illinois variant of the secant method (bracketing, superlinear), following that root
+    alone."""
     f_low, f_high = float(before[mode].real), float(after[mode].real)
-    s_low, s_high = before, after
+    s_low, s_high = before[mode : mode + 1], after[mode : mode + 1]
     iterations = 0
     velocity, root = high, after[mode]
     side = 0
@@ -695,7 +696,7 @@ def _locate(
         reduced = _reduced_at(beam, basis, states, velocity)
         roots, spent = _track(reduced, guesses, velocity, density, settings, scale)
         iterations += spent
-        root = roots[mode]
+        root = roots[0]
         value = float(root.real)
         converged = abs(value) <= _SPEED_TOLERANCE * abs(root)
         if converged or abs(high - low) <= _SPEED_TOLERANCE * high:
