@@ -48,6 +48,7 @@ from solver.residual import (
     build_coupled_function,
     build_panel_loads_function,
     build_residual_function,
+    model_tag,
 )
 
 __all__ = ["CompiledModel", "build_model", "cache_dir", "compilation_enabled", "isa_level"]
@@ -144,7 +145,8 @@ def compilation_enabled() -> bool:
 def _library_path(layout: Layout) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
     flags = "".join(_flags(_compiler())).replace("-", "_")
-    mesh = f"n{layout.n}-k{layout.chordwise}"
+    strip = "-strip" if layout.aerodynamics == "strip" else ""  # the lattice's names unchanged
+    mesh = f"n{layout.n}-k{layout.chordwise}{strip}"
     tag = f"{mesh}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
 
@@ -319,7 +321,7 @@ class CompiledModel:
             time.sleep(min(_LIBRARY_POLL, remaining))
 
     def _use_library(self, library: Path) -> None:
-        tag = f"{self.layout.n}_{self.layout.chordwise}"
+        tag = model_tag(self.layout)
         coupled, residual, panel_loads = (
             ca.external(f"flexwing_{function}_{tag}", str(library))
             for function in ("coupled", "residual", "panel_loads")

@@ -761,8 +761,20 @@ class SolverOptions:
         given=ValidityLimits,
         default_factory=ValidityLimits,
     )
+    aerodynamics: Literal["lattice", "strip"] = parameter(
+        "",
+        "the aerodynamic model: 'lattice' (the horseshoe vortex lattice, the design study's) or "
+        "'strip' (strip theory: each strip a two-dimensional airfoil, lift slope 2 pi, no "
+        "induced velocities from the other strips or the wake; the model of the classical "
+        "divergence and flutter results); every operation runs on either",
+        form="choice",
+        choices=("lattice", "strip"),
+        default="lattice",
+    )
 
     def __post_init__(self) -> None:
         _limits(SolverOptions, self)
         if not isinstance(self.validity, ValidityLimits):
             raise InvalidInput("validity", "must be a solver.ValidityLimits")
+        if self.aerodynamics not in ("lattice", "strip"):
+            raise InvalidInput("aerodynamics", "must be 'lattice' or 'strip'")

@@ -14,24 +14,33 @@ Parameters p, in this order:
     y, chord, elastic_axis, EI, GJ, jig_twist (N each), camber (N (k + 1), station-major:
     camber / chord at each station's chordwise nodes), alpha [deg], sweep [deg],
     deformed_axis (0: torque about the undeformed elastic axis, 1: about the heaved one).
+
+The aerodynamics (`Layout.aerodynamics`) changes what the tangency rows say, never where
+anything sits: "lattice" (the horseshoe lattice, every panel seeing every horseshoe) or "strip"
+(strip theory: each strip a two-dimensional airfoil, `solver.residual`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Literal
 
 import numpy as np
 
-__all__ = ["Layout"]
+__all__ = ["AERODYNAMICS", "Aerodynamics", "Layout"]
+
+Aerodynamics = Literal["lattice", "strip"]
+AERODYNAMICS: tuple[Aerodynamics, ...] = ("lattice", "strip")
 
 
 @dataclass(frozen=True)
 class Layout:
-    """The mesh of N structural stations and its (N - 1) k panels."""
+    """The mesh of N structural stations and its (N - 1) k panels, and the aerodynamics on it."""
 
     n: int
     chordwise: int = 1
+    aerodynamics: Aerodynamics = "lattice"
 
     @property
     def n_panels(self) -> int:

@@ -34,6 +34,12 @@ collocation points, where tangency needs only the normal component); the O(M^2)
 induced-velocity part is combined by the chain rule from the kernel's own derivatives, and the
 beam's outboard sums are applied as running sums over a sparse panels-to-strips operator, which
 keeps the work at O(M^2) instead of O(M^3).
+
+Strip theory (`Layout.aerodynamics == "strip"`) is the same model with the lattice's induced
+velocities replaced by each strip's own two-dimensional ones (`_strip_induced_function`): a
+strip's tangency rows see only its own bound vortices, as infinite line vortices, and its
+forces see the freestream alone. Every other row, the geometry and the beam are the lattice's,
+so every static operation runs unchanged on it; it is O(N k^2).
 """
 
 from __future__ import annotations
@@ -60,6 +66,7 @@ __all__ = [
     "build_coupled_function",
     "build_panel_loads_function",
     "build_residual_function",
+    "model_tag",
 ]
 
 
@@ -407,6 +414,126 @@ class _Symbols:
         )
 
 
+def _lattice_induced(
+    sym: _Symbols,
+    left: ca.MX,
+    right: ca.MX,
+    collocation: ca.MX,
+    center: ca.MX,
+    normal: ca.MX,
+    left_z: ca.MX,
+    right_z: ca.MX,
+    collocation_z: ca.MX,
+    center_z: ca.MX,
+) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
+    """The lattice's induced velocities and their derivatives w.r.t. x = [z; g]: at the
+    collocation points (3M,) with the normal component's derivative (M, nx), at the force
+    points (3M,) with theirs (3M, nx)."""
+    m = sym.m
+    g_row = sym.circulation.T
+    ind_t, infl_t, dfield_t, dleft_t, dright_t = normal_source_columns(m)(
+        collocation, normal, sym.all_bound_legs, left, right, g_row
+    )
+    ind_f, infl_f, dfield_f, dleft_f, dright_f = source_columns(m)(
+        center, sym.no_self_bound_leg, left, right, g_row
+    )
+    # Normal induced velocities at the collocation points and induced velocities at the force
+    # points, w.r.t. x = [z; g].
+    normal_ind_t_x = ca.horzcat(
+        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_z, left_z, right_z, m, 1),
+        infl_t,
+    )
+    ind_f_x = ca.horzcat(
+        _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
+    )
+    return ind_t, normal_ind_t_x, ind_f, ind_f_x
+
+
+def _strip_induced(sym: _Symbols) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
+    """Strip theory's induced velocities (`_strip_induced_function`) in the form of
+    `_lattice_induced`: none at the force points, so the loads see the freestream alone."""
+    m, nx = sym.m, sym.layout.n_unknowns
+    ind_t, normal_ind_t_x = _strip_induced_function(sym.layout, True)(
+        sym.z, sym.circulation, *sym.geometry_inputs
+    )
+    return ind_t, normal_ind_t_x, ca.MX(3 * m, 1), ca.MX(3 * m, nx)
+
+
+@functools.lru_cache(maxsize=8)
+def _strip_induced_function(layout: Layout, with_jacobian: bool) -> ca.Function:
+    """Strip theory: the velocity per unit V at each collocation point induced by the bound
+    vortices of its own strip only, each an infinite (two-dimensional) line vortex along its leg,
+
+        v_p = sum over panels p' of p's strip of g_p' / (2 pi) (l_p' x d) / |d|^2,
+
+    with l_p' the unit leg and d the part of (collocation_p - center_p') normal to it; no
+    trailing legs, no other strip, no mirrored half. One chordwise panel puts the collocation
+    point half a chord behind the vortex, so tangency gives g = pi c sin(incidence): the thin
+    airfoil's lift, slope 2 pi per radian, at the quarter chord. With k panels each strip is the
+    two-dimensional discrete-vortex airfoil (vortices at the panels' quarter, tangency at their
+    three-quarter points), which carries the camber's lift and moment.
+
+    (z, g, parameters) -> induced (3M,) (rows 3 p + c), and with `with_jacobian` the normal
+    component's derivative n_p . d(v_p)/dx (M, 3N + M)."""
+    m, k = layout.n_panels, layout.chordwise
+    params = _Parameters(layout)
+    z = ca.SX.sym("z", 3 * layout.n)
+    g = ca.SX.sym("g", m)
+    lat = params.lattice(z)
+    columns = []
+    for p in range(m):
+        first = (p // k) * k
+        velocity = ca.SX.zeros(3, 1)
+        for q in range(first, first + k):
+            unit = lat.leg[:, q] / ca.norm_2(lat.leg[:, q])
+            offset = lat.collocation[:, p] - lat.center[:, q]
+            normal_offset = offset - ca.dot(offset, unit) * unit
+            velocity += (
+                g[q]
+                / (2 * np.pi)
+                * _cross_columns(unit, normal_offset)
+                / ca.dot(normal_offset, normal_offset)
+            )
+        columns.append(velocity)
+    induced = ca.vertcat(*columns)
+    outputs = [induced]
+    if with_jacobian:
+        derivative = ca.jacobian(induced, ca.vertcat(z, g))
+        outputs.append(
+            ca.vertcat(
+                *[ca.mtimes(lat.normal[:, p].T, derivative[3 * p : 3 * p + 3, :]) for p in range(m)]
+            )
+        )
+    return ca.Function(
+        "strip_induced" if with_jacobian else "strip_induced_values",
+        [z, g, *params.inputs],
+        outputs,
+    )
+
+
+def _cross_columns(a: ca.SX, b: ca.SX) -> ca.SX:
+    """a x b of two (3, 1) columns."""
+    return ca.vertcat(
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    )
+
+
+def _induced_at_points(
+    sym: _Symbols, left: ca.MX, right: ca.MX, collocation: ca.MX, center: ca.MX
+) -> tuple[ca.MX, ca.MX]:
+    """Induced velocities (values only) at the collocation and the force points, (3M,) each."""
+    if sym.layout.aerodynamics == "strip":
+        induced = _strip_induced_function(sym.layout, False)(
+            sym.z, sym.circulation, *sym.geometry_inputs
+        )
+        return induced, ca.MX(3 * sym.m, 1)
+    ind_t = _induced_values(sym, left, right, collocation, sym.all_bound_legs)
+    ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
+    return ind_t, ind_f
+
+
 def build_coupled_function(layout: Layout) -> ca.Function:
     """(x, p) -> r0, r1, the non-zero row blocks of J0 and J1 (dense), and for trim r0_alpha,
     r1_alpha (per degree), lift (per unit q), lift_x (1, n) and lift_alpha; for design the
@@ -429,22 +556,12 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         collocation_z,
         center_z,
     ) = sym.lattice()
-    g_row = sym.circulation.T
-    ind_t, infl_t, dfield_t, dleft_t, dright_t = normal_source_columns(m)(
-        collocation, normal, sym.all_bound_legs, left, right, g_row
-    )
-    ind_f, infl_f, dfield_f, dleft_f, dright_f = source_columns(m)(
-        center, sym.no_self_bound_leg, left, right, g_row
-    )
-    # Normal induced velocities at the collocation points and induced velocities at the force
-    # points, w.r.t. x = [z; g].
-    normal_ind_t_x = ca.horzcat(
-        _induced_derivative(dfield_t, dleft_t, dright_t, collocation_z, left_z, right_z, m, 1),
-        infl_t,
-    )
-    ind_f_x = ca.horzcat(
-        _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
-    )
+    if layout.aerodynamics == "strip":
+        ind_t, normal_ind_t_x, ind_f, ind_f_x = _strip_induced(sym)
+    else:
+        ind_t, normal_ind_t_x, ind_f, ind_f_x = _lattice_induced(
+            sym, left, right, collocation, center, normal, left_z, right_z, collocation_z, center_z
+        )
     tangency, loads, tangency_w, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
         True, ind_t, ind_f
     )
@@ -489,7 +606,7 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         drag_x,
     ]
     return ca.Function(
-        f"flexwing_coupled_{_tag(layout)}",
+        f"flexwing_coupled_{model_tag(layout)}",
         [sym.x, sym.p],
         [ca.densify(out) for out in outputs],
         ["x", "p"],
@@ -510,8 +627,10 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     )
 
 
-def _tag(layout: Layout) -> str:
-    return f"{layout.n}_{layout.chordwise}"
+def model_tag(layout: Layout) -> str:
+    """The mesh's name in the compiled functions' names: N_k, and _strip for strip theory."""
+    strip = "_strip" if layout.aerodynamics == "strip" else ""
+    return f"{layout.n}_{layout.chordwise}{strip}"
 
 
 def _induced_values(
@@ -526,12 +645,11 @@ def build_residual_function(layout: Layout) -> ca.Function:
     checks), and the lift per unit q [m^2] (the trimmed system's extra row)."""
     sym = _Symbols(layout)
     left, right, collocation, center, *_ = sym.lattice()
-    ind_t = _induced_values(sym, left, right, collocation, sym.all_bound_legs)
-    ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
+    ind_t, ind_f = _induced_at_points(sym, left, right, collocation, center)
     tangency, loads = sym.aero(False, ind_t, ind_f)
     r0, r1 = sym.residual(tangency, loads)
     return ca.Function(
-        f"flexwing_residual_{_tag(layout)}",
+        f"flexwing_residual_{model_tag(layout)}",
         [sym.x, sym.p],
         [ca.densify(r0), ca.densify(r1), ca.densify(sym.lift(loads))],
         ["x", "p"],
@@ -549,7 +667,10 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
     sym = _Symbols(layout)
     m = sym.m
     left, right, _, center, *_ = sym.lattice()
-    ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
+    if layout.aerodynamics == "strip":
+        ind_f = ca.MX(3 * m, 1)  # strip theory's loads see the freestream alone
+    else:
+        ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
     params = _Parameters(layout)
     z, g, alpha = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m), ca.SX.sym("alpha")
     induced = ca.SX.sym("induced", 3 * m)
@@ -564,7 +685,7 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
         sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f
     )
     return ca.Function(
-        f"flexwing_panel_loads_{_tag(layout)}",
+        f"flexwing_panel_loads_{model_tag(layout)}",
         [sym.x, sym.p],
         [force_mx, torque_mx, center, quarter_mx],
         ["x", "p"],

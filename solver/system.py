@@ -17,7 +17,7 @@ from solver.continuation import branch_scales
 from solver.evaluation import AlphaTerms, Evaluation
 from solver.geometry import chordwise_nodes
 from solver.inputs import SolverOptions, Wing
-from solver.layout import Layout
+from solver.layout import Aerodynamics, Layout
 
 __all__ = ["CoupledSystem"]
 
@@ -25,21 +25,31 @@ __all__ = ["CoupledSystem"]
 @dataclass(frozen=True, eq=False)
 class CoupledSystem:
     """The residual r(x; q) = r0(x) + q r1(x) of `wing` at `alpha` [deg], with `chordwise`
-    panels per strip and the torque about the heaved elastic axis if `deformed_axis`."""
+    panels per strip, the torque about the heaved elastic axis if `deformed_axis`, and the
+    lattice's or strip theory's `aerodynamics` (`solver.layout`)."""
 
     wing: Wing
     alpha: float
     chordwise: int = 1
     deformed_axis: bool = False
+    aerodynamics: Aerodynamics = "lattice"
 
     @classmethod
     def of(cls, wing: Wing, alpha: float, options: SolverOptions) -> CoupledSystem:
-        return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed")
+        return cls(
+            wing,
+            alpha,
+            options.chordwise_panels,
+            options.torque_axis == "deformed",
+            options.aerodynamics,
+        )
 
     def at_alpha(self, alpha: float) -> CoupledSystem:
         """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
         model and every other parameter: a trimmed solve changes alpha at every iteration)."""
-        other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
+        other = CoupledSystem(
+            self.wing, alpha, self.chordwise, self.deformed_axis, self.aerodynamics
+        )
         parameters = self.parameters.copy()
         parameters[self.layout.alpha_index] = alpha
         other.__dict__["parameters"] = parameters
@@ -50,7 +60,7 @@ class CoupledSystem:
 
     @cached_property
     def layout(self) -> Layout:
-        return Layout(self.wing.n_stations, self.chordwise)
+        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics)
 
     @cached_property
     def model(self) -> CompiledModel:
@@ -73,9 +83,20 @@ class CoupledSystem:
         return parameters
 
     @property
-    def key(self) -> tuple[bytes, float, int, bool]:
+    def key(self) -> tuple[bytes, float, int, bool, str]:
         """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike)."""
-        return (self.wing.key, self.alpha + 0.0, self.chordwise, self.deformed_axis)
+        return (
+            self.wing.key,
+            self.alpha + 0.0,
+            self.chordwise,
+            self.deformed_axis,
+            self.aerodynamics,
+        )
+
+    @property
+    def model_key(self) -> tuple[bytes, int, bool, str]:
+        """The identity of the wing as modelled, whatever the alpha (what its rest state keys)."""
+        return (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)
 
     def evaluate(self, x: np.ndarray) -> Evaluation:
         return self.model.evaluate(x, self.parameters)

@@ -16,6 +16,7 @@ import pytest
 
 from solver import Layout, compiled
 from solver.cache import clear_caches, model_for
+from solver.layout import Aerodynamics
 
 # A small mesh keeps the C compile to a couple of seconds.
 N_SMALL = 5
@@ -62,11 +63,14 @@ def test_first_use_answers_from_the_virtual_machine_while_compiling(private_cach
 
 
 @pytest.mark.server  # compiles, or starts a process
-def test_compiled_code_and_virtual_machine_are_bit_identical(private_cache: Path) -> None:
+@pytest.mark.parametrize("aerodynamics", ["lattice", "strip"])
+def test_compiled_code_and_virtual_machine_are_bit_identical(
+    private_cache: Path, aerodynamics: Aerodynamics
+) -> None:
     """Same operations in the same order, no multiply-add contraction: the same bits, so an
     answer never depends on whether the library had been compiled yet."""
     x, p = _random_state(N_SMALL), _parameters(N_SMALL)
-    model = model_for(Layout(N_SMALL))
+    model = model_for(Layout(N_SMALL, 1, aerodynamics))
     assert not model.compiled
     on_vm = model.evaluate(x, p)
     residual_vm = model.residual(x, p)
@@ -259,6 +263,19 @@ def test_the_isa_level_is_in_the_library_name(private_cache: Path) -> None:
         lambda flag: compiled._compiler_accepts(compiled._compiler(), flag),
     )
     assert march == ([] if level is None else [f"-march={level}"])
+
+
+def test_strip_theory_has_a_library_of_its_own_and_the_lattices_name_is_unchanged(
+    private_cache: Path,
+) -> None:
+    """Strip theory is another compiled model of the same mesh: another file, so neither can
+    load the other's functions; the lattice's name (and so every library already on disk) is
+    the one it had before strip theory existed."""
+    lattice = compiled._library_path(Layout(N_SMALL)).name
+    strip = compiled._library_path(Layout(N_SMALL, 1, "strip")).name
+    assert strip != lattice
+    assert lattice.startswith(f"flexwing-n{N_SMALL}-k1-model")
+    assert strip.startswith(f"flexwing-n{N_SMALL}-k1-strip-model")
 
 
 def test_a_flag_the_compiler_does_not_take_is_left_out(tmp_path: Path) -> None:

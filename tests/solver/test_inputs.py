@@ -133,6 +133,7 @@ def test_the_wing_key_is_canonical():
         pytest.param({"tolerance": 0.0}, "tolerance", id="zero-tolerance"),
         pytest.param({"tolerance": math.nan}, "tolerance", id="nan-tolerance"),
         pytest.param({"max_iterations": -1}, "max_iterations", id="negative-iterations"),
+        pytest.param({"aerodynamics": "doublet"}, "aerodynamics", id="unknown-aerodynamics"),
     ],
 )
 def test_invalid_solver_options_name_the_field(changes: dict, field: str):

@@ -15,8 +15,12 @@ def test_equal_wings_and_alphas_have_one_key_whatever_the_sign_of_zero():
     assert CoupledSystem(wing, 0.0).key == CoupledSystem(study_wing(12), -0.0).key
     assert CoupledSystem(wing, 5.0).key != CoupledSystem(wing, 5.0, chordwise=2).key
     assert CoupledSystem(wing, 5.0).key != CoupledSystem(wing, 5.0, deformed_axis=True).key
-    options = SolverOptions(chordwise_panels=3, torque_axis="deformed")
-    assert CoupledSystem.of(wing, 5.0, options).key == (wing.key, 5.0, 3, True)
+    assert CoupledSystem(wing, 5.0).key != CoupledSystem(wing, 5.0, aerodynamics="strip").key
+    options = SolverOptions(chordwise_panels=3, torque_axis="deformed", aerodynamics="strip")
+    system = CoupledSystem.of(wing, 5.0, options)
+    assert system.key == (wing.key, 5.0, 3, True, "strip")
+    assert system.model_key == (wing.key, 3, True, "strip")  # what the wing at rest keys
+    assert system.at_alpha(1.0).model_key == system.model_key
 
 
 def test_at_another_alpha_only_alpha_changes_and_the_model_is_shared():
