@@ -45,6 +45,7 @@ OPERATIONS = {
     "solve": Operation("solve", "solve_timeout", "equilibrium"),
     "sweep": Operation("sweep", "sweep_timeout", "completed"),
     "optimize": Operation("optimize", "optimize_timeout", "optimum"),
+    "flutter": Operation("flutter", "flutter_timeout", "analysed"),
 }
 
 

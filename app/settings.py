@@ -91,6 +91,9 @@ class Settings(BaseSettings):
     optimize_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /optimize in a worker."
     )
+    flutter_timeout: float = Field(
+        default=120.0, gt=0, description="[s] time budget of one /flutter in a worker."
+    )
     sync_wait: float = Field(
         default=10.0,
         gt=0,

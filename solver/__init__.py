@@ -41,6 +41,17 @@ from solver.errors import (
     SolverError,
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
+from solver.flutter import FlutterOptions, flutter
+from solver.flutter_results import (
+    DivergenceOnset,
+    FlutterInfo,
+    FlutterOnset,
+    FlutterPoint,
+    FlutterResult,
+    ModeShape,
+    NaturalModes,
+    NoFlutter,
+)
 from solver.inputs import (
     FLIGHT_RULE,
     ISA_SEA_LEVEL_DENSITY,
@@ -56,7 +67,9 @@ from solver.inputs import (
     Wing,
 )
 from solver.layout import Layout
-from solver.operations import OPERATIONS, OptimizeInput, SolveInput, SweepInput
+from solver.mass import ConcentratedMass, MassModel
+from solver.modes import natural_modes
+from solver.operations import OPERATIONS, FlutterInput, OptimizeInput, SolveInput, SweepInput
 from solver.optimize import optimize
 from solver.results import (
     FINDING_CODES,
@@ -101,6 +114,7 @@ __all__ = [
     "cache_info",
     "CacheInfo",
     "clear_caches",
+    "ConcentratedMass",
     "ConstraintValue",
     "ConvergenceError",
     "Design",
@@ -109,6 +123,7 @@ __all__ = [
     "DesignProblem",
     "digest",
     "divergence_summary",
+    "DivergenceOnset",
     "DivergenceSummary",
     "Equilibrium",
     "find_fold",
@@ -117,6 +132,13 @@ __all__ = [
     "fit_divergence",
     "FitDivergence",
     "FlightCondition",
+    "flutter",
+    "FlutterInfo",
+    "FlutterInput",
+    "FlutterOnset",
+    "FlutterOptions",
+    "FlutterPoint",
+    "FlutterResult",
     "Fold",
     "InfeasibleDesign",
     "InitialGuess",
@@ -126,8 +148,13 @@ __all__ = [
     "linear_divergence",
     "linear_divergence_pressure",
     "LinearDivergence",
+    "MassModel",
     "Material",
+    "ModeShape",
+    "natural_modes",
+    "NaturalModes",
     "NoEquilibrium",
+    "NoFlutter",
     "OperatingPoint",
     "OptimalDesign",
     "optimize",

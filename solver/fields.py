@@ -95,7 +95,7 @@ class Limits:
 #   airfoil      a camber line for every station or one per station (`solver.airfoil`)
 #   diameter     per_station, or a `solver.spar.ThicknessFraction`
 #   nested       an input dataclass of its own (`given`)
-#   items        a list of `given` input dataclasses
+#   items        a list of `given` input dataclasses (at most one per station)
 #   velocities   airspeeds: a list, or `solver.inputs.VelocityRange`
 #   deformation  N numbers (a starting deformation), each within the limits
 FORMS = (

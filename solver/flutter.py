@@ -49,7 +49,7 @@ import numpy as np
 from solver.airspeed_sweep import airspeed_sweep
 from solver.errors import ConvergenceError, InvalidInput, SolverError, numerical_failures_as
 from solver.evaluation import Evaluation
-from solver.fields import is_number, number, parameter, spec_of
+from solver.fields import integer, is_number, number, parameter, specs
 from solver.flutter_results import (
     DivergenceOnset,
     FlutterInfo,
@@ -87,25 +87,38 @@ Progress = Callable[[int, int], None]
 
 @dataclass(frozen=True)
 class FlutterOptions:
-    """How the flutter solution is made."""
+    """How the flutter solution is made, and about which state."""
 
+    about: Literal["equilibrium", "jig"] = parameter(
+        "",
+        "the state the equations of motion are linearised about: equilibrium (the static "
+        "equilibrium of the flight condition at each airspeed: its tangent stiffness, "
+        "aerodynamic stiffness included) or jig (the unloaded wing, the classical analysis)",
+        form="choice",
+        choices=("equilibrium", "jig"),
+        default="equilibrium",
+    )
     modes: int | None = parameter(
         "-",
         "natural modes in the solution's basis, the lowest (the divergence shape's remainder "
         "comes on top, condensed); null: six, or all of a mesh with fewer",
         ge=1,
+        le=100,
         why="at least one mode; at most the mesh's 2 (N - 1)",
+        form="integer",
         default=None,
     )
     unsteady: Literal["theodorsen", "quasi_steady"] = parameter(
         "",
         "the circulation's lag: theodorsen (C(k)) or quasi_steady (C = 1, no wake lag)",
+        form="choice",
+        choices=("theodorsen", "quasi_steady"),
         default="theodorsen",
     )
     tolerance: float = parameter(
         "-",
         "relative change of a root at which its p-k iteration has converged",
-        gt=0,
+        ge=1e-14,
         le=1e-3,
         why="a looser fixed point moves the flutter speed by as much",
         default=1e-10,
@@ -114,21 +127,23 @@ class FlutterOptions:
         "-",
         "p-k iterations of one root at one airspeed before it is given up",
         ge=1,
+        le=1000,
         why="the fixed point needs at least one",
+        form="integer",
         default=100,
     )
 
     def __post_init__(self) -> None:
-        for name in ("modes", "max_iterations"):
+        for name, spec in specs(FlutterOptions).items():
             value = getattr(self, name)
-            if value is None and name == "modes":
+            if value is None:
                 continue
-            if not (is_number(value) and float(value) == int(value)):
-                raise InvalidInput(f"flutter.{name}", "must be a whole number")
-            number(f"flutter.{name}", value, spec_of(FlutterOptions, name))
-        number("flutter.tolerance", self.tolerance, spec_of(FlutterOptions, "tolerance"))
-        if self.unsteady not in ("theodorsen", "quasi_steady"):
-            raise InvalidInput("flutter.unsteady", "must be 'theodorsen' or 'quasi_steady'")
+            if spec.form == "integer":
+                integer(name, value, spec)
+            elif spec.form == "number":
+                number(name, value, spec)
+            elif value not in spec.choices:
+                raise InvalidInput(name, "must be one of " + ", ".join(spec.choices))
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ from solver import fields
 from solver.airfoil import MAX_CAMBER, CamberLine, camber_line
 from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
+from solver.mass import MassModel
 from solver.spar import SparDesign, ThicknessFraction, TubeSpar
 
 __all__ = [
@@ -133,7 +134,7 @@ def _tube(design: SparDesign, chord: np.ndarray, airfoil: tuple[CamberLine, ...]
 
 
 # What `Wing.create` resolves by hand; every other input field is checked by its form.
-_RESOLVED = ("y", "bending_stiffness", "torsional_stiffness", "airfoil", "spar")
+_RESOLVED = ("y", "bending_stiffness", "torsional_stiffness", "airfoil", "spar", "mass")
 
 
 @dataclass(frozen=True, eq=False)
@@ -236,6 +237,14 @@ class Wing:
         default=None,
         example=1.4,
     )
+    mass: MassModel | None = parameter(
+        "",
+        "the wing's mass, per station like the stiffnesses, for its vibration modes and "
+        "flutter (POST /flutter needs it; every other operation ignores it)",
+        form="nested",
+        given=MassModel,
+        default=None,
+    )
 
     @classmethod
     def create(
@@ -248,6 +257,7 @@ class Wing:
         *,
         spar: SparDesign | None = None,
         airfoil: object = None,
+        mass: MassModel | None = None,
         **given: Any,
     ) -> Wing:
         """Validate and normalise inputs; any per-station input may be one number for all, and
@@ -289,7 +299,17 @@ class Wing:
                 normal[name] = _checked(name, stiffness, declared[name], n)
             else:
                 normal[name] = fields.stations(name, stiffness, n)
-        return cls(y=y_arr, spar=tube, airfoil=sections, **normal)
+        if mass is not None:
+            if not isinstance(mass, MassModel):
+                raise InvalidInput("mass", "must be a solver.MassModel")
+            mass = MassModel.create(
+                n,
+                mass.mass_per_length,
+                mass.center_of_gravity,
+                mass.inertia_per_length,
+                mass.concentrated,
+            )
+        return cls(y=y_arr, spar=tube, airfoil=sections, mass=mass, **normal)
 
     @property
     def n_stations(self) -> int:

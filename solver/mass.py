@@ -52,6 +52,7 @@ class ConcentratedMass:
         "index of the station it is attached at (0 is the clamped root, where it never moves)",
         ge=0,
         why="an index into the stations",
+        form="integer",
         example=29,
     )
     mass: float = parameter(
@@ -122,7 +123,13 @@ class MassModel:
         per_station=True,
         example=7.45,
     )
-    concentrated: tuple[ConcentratedMass, ...] = ()
+    concentrated: tuple[ConcentratedMass, ...] = parameter(
+        "",
+        "concentrated masses (a tip store, an engine, a balance weight), each at a station",
+        form="items",
+        given=ConcentratedMass,
+        default=(),
+    )
 
     @classmethod
     def create(
@@ -144,7 +151,7 @@ class MassModel:
                 ("inertia_per_length", inertia_per_length),
             )
         }
-        masses = tuple(concentrated)
+        masses = tuple(concentrated or ())
         for i, item in enumerate(masses):
             where = f"{path}concentrated[{i}]"
             if not isinstance(item, ConcentratedMass):
@@ -154,18 +161,6 @@ class MassModel:
                     f"{where}.station", f"must be below {n_stations}, the number of stations"
                 )
         return cls(**arrays, concentrated=masses)
-
-    @property
-    def key(self) -> bytes:
-        """A canonical identity of the numbers (for caches keyed by the wing)."""
-        items = [(m.station, m.mass, m.inertia, m.offset) for m in self.concentrated]
-        arrays = (
-            self.mass_per_length,
-            self.center_of_gravity,
-            self.inertia_per_length,
-            np.array(items, dtype=float).ravel(),
-        )
-        return b"".join(np.ascontiguousarray(a + 0.0, dtype=np.float64).tobytes() for a in arrays)
 
 
 @dataclass(frozen=True)

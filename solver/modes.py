@@ -118,11 +118,12 @@ class Structure:
         return omega2, right, left / scale
 
 
-def structure(wing: Wing, mass: MassModel | None) -> Structure:
+def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
     """The cantilever of `wing` with `mass` (`Structure`).
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
+    mass = mass if mass is not None else wing.mass
     if mass is None:
         raise InvalidInput(
             "wing.mass",
@@ -280,7 +281,9 @@ class _Beam:
         return -self.response() @ np.linalg.inv(flexibility)
 
 
-def natural_modes(wing: Wing, mass: MassModel | None, count: int | None = None) -> NaturalModes:
+def natural_modes(
+    wing: Wing, mass: MassModel | None = None, count: int | None = None
+) -> NaturalModes:
     """The lowest `count` natural modes of `wing` with `mass` in vacuum (default: all of them,
     2 (N - 1)), clamped at the root.
 

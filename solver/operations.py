@@ -18,6 +18,8 @@ from solver.airspeed_sweep import airspeed_sweep
 from solver.design import DesignProblem
 from solver.errors import InvalidInput
 from solver.fields import parameter
+from solver.flutter import FlutterOptions, Progress, flutter
+from solver.flutter_results import FlutterResult
 from solver.inputs import (
     FLIGHT_RULE,
     FlightCondition,
@@ -30,7 +32,25 @@ from solver.optimize import optimize
 from solver.results import AirspeedSweep, Equilibrium, OptimalDesign
 from solver.solve import solve
 
-__all__ = ["OPERATIONS", "OptimizeInput", "SolveInput", "SweepInput"]
+__all__ = ["OPERATIONS", "FlutterInput", "OptimizeInput", "SolveInput", "SweepInput"]
+
+
+def _check_airspeeds(velocities: tuple[float, ...] | VelocityRange) -> None:
+    """Each listed airspeed within a flight condition's, at least one."""
+    if isinstance(velocities, VelocityRange):
+        return
+    spec = fields.spec_of(FlightCondition, "velocity")
+    for index, velocity in enumerate(velocities):
+        fields.number(f"velocities[{index}]", velocity, spec)
+    if not velocities:
+        raise InvalidInput("velocities", "needs at least one airspeed")
+
+
+def _airspeeds(velocities: tuple[float, ...] | VelocityRange) -> tuple[float, ...]:
+    """[m/s] the airspeeds a list or a range gives, in order."""
+    if isinstance(velocities, VelocityRange):
+        return velocities.velocities()
+    return tuple(float(v) for v in velocities)
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,20 +124,12 @@ class SweepInput:
     )
 
     def __post_init__(self) -> None:
-        if isinstance(self.velocities, VelocityRange):
-            return
-        spec = fields.spec_of(FlightCondition, "velocity")
-        for index, velocity in enumerate(self.velocities):
-            fields.number(f"velocities[{index}]", velocity, spec)
-        if not self.velocities:
-            raise InvalidInput("velocities", "needs at least one airspeed")
+        _check_airspeeds(self.velocities)
 
     @property
     def airspeeds(self) -> tuple[float, ...]:
         """[m/s] the airspeeds, in request order."""
-        if isinstance(self.velocities, VelocityRange):
-            return self.velocities.velocities()
-        return tuple(float(v) for v in self.velocities)
+        return _airspeeds(self.velocities)
 
     @property
     def modelled(self) -> SolverOptions:
@@ -160,9 +172,83 @@ class OptimizeInput:
         return optimize(self.wing, self.problem, self.modelled)
 
 
+@dataclass(frozen=True, eq=False)
+class FlutterInput:
+    """The wing's vibration modes and its flutter: damping and frequency of every mode at each
+    airspeed (the V-g and V-f diagrams), linearised about the static equilibrium of `flight`
+    at each airspeed, or about the unloaded jig (`flutter.about`)."""
+
+    wing: Wing = parameter("", "the wing, with its mass", form="nested", given=Wing)
+    flight: FlightCondition = parameter(
+        "",
+        f"the flight condition at every airspeed: {FLIGHT_RULE}; its density is the air's in "
+        "the unsteady loads, its alpha or lift the equilibrium linearised about",
+        form="nested",
+        given=FlightCondition,
+        without=("velocity",),
+    )
+    velocities: tuple[float, ...] | VelocityRange = parameter(
+        "m/s",
+        "airspeeds, each from 0.01 to 1000, answered in this order: a list (1 to "
+        "FLEXWING_MAX_SWEEP_POINTS values, default 50) or {start, stop, count}; the flutter and "
+        "divergence speeds are located between them",
+        form="velocities",
+        given=VelocityRange,
+        example=[20.0, 60.0, 100.0, 140.0, 180.0],
+    )
+    options: SolverOptions | None = parameter(
+        "", "optional solver options", form="nested", given=SolverOptions, default=None
+    )
+    flutter: FlutterOptions | None = parameter(
+        "",
+        "optional flutter options (the state linearised about, the basis, the lag)",
+        form="nested",
+        given=FlutterOptions,
+        default=None,
+    )
+
+    def __post_init__(self) -> None:
+        if self.wing.mass is None:
+            raise InvalidInput(
+                "wing.mass",
+                "is required for vibration and flutter: mass per unit length, centre of "
+                "gravity and inertia per station",
+            )
+        _check_airspeeds(self.velocities)
+
+    @property
+    def airspeeds(self) -> tuple[float, ...]:
+        """[m/s] the airspeeds, in request order."""
+        return _airspeeds(self.velocities)
+
+    @property
+    def modelled(self) -> SolverOptions:
+        return self.options or SolverOptions()
+
+    @cached_property
+    def key(self) -> bytes:
+        return fields.digest((self.wing, self.flight, self.airspeeds, self.options, self.flutter))
+
+    def run(self, progress: Progress | None = None) -> FlutterResult:
+        settings = self.flutter or FlutterOptions()
+        loaded = settings.about == "equilibrium"
+        return flutter(
+            self.wing,
+            None,
+            self.airspeeds,
+            self.flight.density,
+            alpha=self.flight.alpha if loaded else None,
+            lift=self.flight.required_lift if loaded else None,
+            options=self.modelled,
+            flutter_options=settings,
+            progress=progress,
+        )
+
+
 # Operation name -> its input type; `run()` answers each.
 OPERATIONS: dict[str, Callable[..., object]] = {
     "solve": SolveInput,
     "sweep": SweepInput,
     "optimize": OptimizeInput,
+    "flutter": FlutterInput,
 }

@@ -28,6 +28,8 @@ from pydantic.json_schema import SkipJsonSchema
 from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem, problem_body
 from app.schemas import (
+    FlutterRequest,
+    FlutterResponse,
     OptimizeRequest,
     OptimizeResponse,
     SolveRequest,
@@ -131,7 +133,8 @@ def _check(request: Any, settings: Settings) -> None:
     task_of(request, settings)  # raises the endpoint's invalid-input problem
 
 
-def _sweep_points(request: SweepRequest) -> int:
+def _sweep_points(request: SweepRequest | FlutterRequest) -> int:
+    """The airspeeds of a sweep or a flutter analysis: its progress counts them."""
     velocities = request.velocities
     return len(velocities) if isinstance(velocities, list) else velocities.count
 
@@ -215,6 +218,18 @@ register(
         check=_check,
         run=_answering("optimize", OptimizeResponse),
         result=_json(OptimizeResponse),
+    )
+)
+register(
+    Operation(
+        name="flutter",
+        summary="a flutter analysis (POST /flutter)",
+        request_model=FlutterRequest,
+        request_description="A POST /flutter body.",
+        units=_sweep_points,
+        check=_check,
+        run=_answering("flutter", FlutterResponse),
+        result=_json(FlutterResponse),
     )
 )
 register(

@@ -6,7 +6,7 @@ from typing import Any
 
 from app.problems import ProblemDetails
 
-__all__ = ["OPTIMIZE_ERRORS", "SOLVE_ERRORS", "SWEEP_ERRORS"]
+__all__ = ["FLUTTER_ERRORS", "OPTIMIZE_ERRORS", "SOLVE_ERRORS", "SWEEP_ERRORS"]
 
 
 def _problem(description: str) -> dict[str, Any]:
@@ -42,4 +42,14 @@ OPTIMIZE_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
         "convergence of the optimal wing (/problems/no-equilibrium, /problems/not-converged)."
     ),
     504: _problem("The optimisation exceeded its time budget (/problems/solve-timeout)."),
+}
+
+FLUTTER_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field: `wing.mass` "
+        "without a mass model), or a root that could not be followed (/problems/not-converged). "
+        "Airspeeds past a loaded wing's equilibria are answered in their points "
+        "(`status` no_equilibrium), never with a 422."
+    ),
+    504: _problem("The analysis exceeded its time budget (/problems/solve-timeout)."),
 }

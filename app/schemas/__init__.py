@@ -5,12 +5,19 @@ examples, the operations routes' models, and the checks of the limits the settin
 from __future__ import annotations
 
 from app.schemas.derive import RequestModel, request_model, to_solver
-from app.schemas.examples import OPTIMIZE_EXAMPLES, SOLVE_EXAMPLES, SWEEP_EXAMPLES, study_wing
+from app.schemas.examples import (
+    FLUTTER_EXAMPLES,
+    OPTIMIZE_EXAMPLES,
+    SOLVE_EXAMPLES,
+    SWEEP_EXAMPLES,
+    study_wing,
+)
 from app.schemas.health import ClusterWorker, HealthResponse, ReadyResponse
-from app.schemas.requests import OptimizeRequest, SolveRequest, SweepRequest, Wing
+from app.schemas.requests import FlutterRequest, OptimizeRequest, SolveRequest, SweepRequest, Wing
 from app.schemas.responses import (
     API_ONLY_FIELDS,
     MODEL_NAMES,
+    FlutterResponse,
     OptimizeResponse,
     SolveResponse,
     SweepResponse,
@@ -21,11 +28,14 @@ from app.schemas.responses import (
 
 __all__ = [
     "API_ONLY_FIELDS",
+    "FLUTTER_EXAMPLES",
     "MODEL_NAMES",
     "OPTIMIZE_EXAMPLES",
     "SOLVE_EXAMPLES",
     "SWEEP_EXAMPLES",
     "ClusterWorker",
+    "FlutterRequest",
+    "FlutterResponse",
     "HealthResponse",
     "OptimizeRequest",
     "OptimizeResponse",

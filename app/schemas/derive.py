@@ -17,6 +17,7 @@ Limits set by the service's settings (most stations, most sweep points) are mark
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import typing
 from collections.abc import Callable
 from typing import Annotated, Any, ClassVar, Literal, TypeVar, Union
@@ -40,6 +41,7 @@ _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
     (solver.SolveInput, None, ()): "SolveRequest",
     (solver.SweepInput, None, ()): "SweepRequest",
     (solver.OptimizeInput, None, ()): "OptimizeRequest",
+    (solver.FlutterInput, None, ()): "FlutterRequest",
     (solver.SparDesign, None, ()): "TubeSpar",
     (solver.Material, None, ()): "SparMaterial",
     (solver.FlightCondition, "alpha", ()): "FlightAtAlpha",
@@ -296,6 +298,12 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
     if form == "nested":
         assert spec.given is not None
         return request_model(spec.given, spec.without)
+    if form == "items":
+        assert spec.given is not None
+        return Annotated[
+            list[request_model(spec.given)],  # type: ignore[misc]
+            Field(max_length=MAX_ARRAY_LENGTH, json_schema_extra=STATIONS_LIMIT),
+        ]
     raise TypeError(f"no API type for input form {form!r}")
 
 
@@ -320,8 +328,11 @@ def _field(
         pass
     elif field.default is not dataclasses.MISSING:
         default = field.default
-        # The normalised defaults of the solver's own types mean "none given" at the API.
-        kwargs["default"] = None if isinstance(default, tuple) else default
+        # The normalised defaults of the solver's own types mean "none given" at the API: an
+        # empty list of items, a null for the rest.
+        if isinstance(default, tuple):
+            default = [] if spec.form == "items" else None
+        kwargs["default"] = default
     elif field.default_factory is not dataclasses.MISSING:
         kwargs["default_factory"] = annotation  # a nested model of its defaults
     has_default = "default" in kwargs or "default_factory" in kwargs
@@ -347,7 +358,7 @@ def _unbounded_count(cls: type, name: str) -> bool:
 # ---------------------------------------------------------------------------- whole models
 
 # Forms given as up to one value per station (FLEXWING_MAX_STATIONS bounds their lists).
-_PER_STATION_FORMS = ("per_station", "positions", "airfoil", "diameter", "deformation")
+_PER_STATION_FORMS = ("per_station", "positions", "airfoil", "diameter", "deformation", "items")
 
 _models: dict[tuple[type, str | None, tuple[str, ...]], Any] = {}
 
@@ -412,7 +423,7 @@ def _model(cls: type, way: str | None, without: tuple[str, ...]) -> type[Request
         __doc__=doc or (cls.__doc__ or "").strip(),
         **definitions,
     )
-    model.__solver__ = getattr(cls, "create", cls)
+    model.__solver__ = _builder(cls)
     model.__fixed__ = dict.fromkeys(without)
     if way is not None:
         # The other ways' fields are absent: the solver's defaults (None) stand for them.
@@ -432,6 +443,23 @@ def _model(cls: type, way: str | None, without: tuple[str, ...]) -> type[Request
     model.__flat_types__ = flat_types
     _models[key] = model
     return model  # type: ignore[no-any-return]
+
+
+def _builder(cls: type) -> Callable[..., Any]:
+    """What builds `cls` from its fields: its `create` (which validates and normalises) when
+    that takes nothing but fields, else the class itself (a value its owner resolves, as
+    `Wing.create` resolves the wing's `MassModel` for its stations)."""
+    create = getattr(cls, "create", None)
+    if create is None:
+        return cls
+    names = {field.name for field in dataclasses.fields(cls)}  # type: ignore[arg-type]
+    required = [
+        parameter.name
+        for parameter in inspect.signature(create).parameters.values()
+        if parameter.default is inspect.Parameter.empty
+        and parameter.kind is not inspect.Parameter.VAR_KEYWORD
+    ]
+    return create if set(required) <= names else cls
 
 
 def _has_none_default(cls: type, name: str) -> bool:

@@ -11,6 +11,8 @@ from typing import Any
 from solver import ISA_SEA_LEVEL_DENSITY
 
 __all__ = [
+    "FLUTTER_EXAMPLES",
+    "GOLAND_FLUTTER",
     "OPTIMIZE_EXAMPLES",
     "SOLVE_EXAMPLES",
     "STUDY_OPTIMIZE",
@@ -136,5 +138,51 @@ OPTIMIZE_EXAMPLES: dict[str, Any] = {
         "summary": "The regularised sketch AeroSandbox solves: every station, penalty 0.01",
         "value": STUDY_OPTIMIZE
         | {"design": {"jig_twist": {"control_points": None}}, "smoothness_weight": 0.01},
+    },
+}
+
+
+# The Goland wing (Goland 1945, J. Appl. Mech. 12, A197; as tabulated by Eastep and by
+# Bisplinghoff, Ashley and Halfman): semispan 6.096 m, chord 1.8288 m, elastic axis at 33 %,
+# centre of gravity at 43 % chord, EI 9.77e6 N m^2, GJ 0.987e6 N m^2, 35.71 kg/m and 8.64 kg m
+# about the elastic axis (7.45 kg m about the centre of gravity). Strip theory at sea level:
+# flutter at ~137 m/s, ~70 rad/s.
+GOLAND_WING: dict[str, Any] = {
+    "y": {"semispan": 6.096, "stations": 30},
+    "chord": 1.8288,
+    "elastic_axis": 0.33,
+    "bending_stiffness": 9.77e6,
+    "torsional_stiffness": 0.987e6,
+    "mass": {"mass_per_length": 35.71, "center_of_gravity": 0.43, "inertia_per_length": 7.446},
+}
+GOLAND_FLUTTER: dict[str, Any] = {
+    "wing": GOLAND_WING,
+    "flight": {"alpha": 0.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "velocities": {"start": 20.0, "stop": 200.0, "count": 50},
+    "options": {"aerodynamics": "strip"},
+}
+FLUTTER_EXAMPLES: dict[str, Any] = {
+    "goland": {
+        "summary": "The Goland wing, strip theory at sea level: flutter at ~137 m/s, ~70 rad/s",
+        "value": GOLAND_FLUTTER,
+    },
+    "goland_lattice": {
+        "summary": "The same wing with the lattice's 3D steady loading and Theodorsen's lag",
+        "value": GOLAND_FLUTTER | {"options": {"aerodynamics": "lattice"}},
+    },
+    "study_loaded": {
+        "summary": "The study's wing, about its equilibrium at 5 deg (a soft, light wing)",
+        "value": {
+            "wing": STUDY_WING
+            | {
+                "mass": {
+                    "mass_per_length": 1.0,
+                    "center_of_gravity": 0.42,
+                    "inertia_per_length": 0.02,
+                }
+            },
+            "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "velocities": {"start": 2.0, "stop": 21.0, "count": 20},
+        },
     },
 }

@@ -7,9 +7,15 @@ from typing import Any
 
 import solver
 from app.schemas.derive import request_model
-from app.schemas.examples import STUDY_OPTIMIZE, STUDY_SOLVE, STUDY_SWEEP_REQUEST, STUDY_WING
+from app.schemas.examples import (
+    GOLAND_FLUTTER,
+    STUDY_OPTIMIZE,
+    STUDY_SOLVE,
+    STUDY_SWEEP_REQUEST,
+    STUDY_WING,
+)
 
-__all__ = ["OptimizeRequest", "SolveRequest", "SweepRequest", "Wing"]
+__all__ = ["FlutterRequest", "OptimizeRequest", "SolveRequest", "SweepRequest", "Wing"]
 
 
 def _with_example(model: Any, example: dict[str, Any]) -> Any:
@@ -23,3 +29,4 @@ Wing = _with_example(request_model(solver.Wing), STUDY_WING)
 SolveRequest = _with_example(request_model(solver.SolveInput), STUDY_SOLVE)
 SweepRequest = _with_example(request_model(solver.SweepInput), STUDY_SWEEP_REQUEST)
 OptimizeRequest = _with_example(request_model(solver.OptimizeInput), STUDY_OPTIMIZE)
+FlutterRequest = _with_example(request_model(solver.FlutterInput), GOLAND_FLUTTER)

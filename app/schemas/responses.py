@@ -24,6 +24,7 @@ import solver
 __all__ = [
     "API_ONLY_FIELDS",
     "MODEL_NAMES",
+    "FlutterResponse",
     "OptimizeResponse",
     "SolveResponse",
     "SweepResponse",
@@ -42,6 +43,7 @@ MODEL_NAMES = {
     "DivergenceSummary": "Divergence",
     "PointFailure": "NoEquilibrium",
     "OptimalDesign": "OptimizeResponse",
+    "FlutterResult": "FlutterResponse",
 }
 
 # Fields the service adds to a solver type: name -> (type, default, description).
@@ -50,6 +52,7 @@ API_ONLY_FIELDS: dict[str, dict[str, tuple[Any, Any, str]]] = {
     "AirspeedSweepInfo": {
         "cached": (bool, False, "Answered from the result cache without solving.")
     },
+    "FlutterInfo": {"cached": (bool, False, "Answered from the result cache without solving.")},
 }
 
 _models: dict[type, type[BaseModel]] = {}
@@ -133,3 +136,4 @@ def payload(result: Any) -> Any:
 SolveResponse = response_model(solver.Equilibrium)
 SweepResponse = response_model(solver.AirspeedSweep)
 OptimizeResponse = response_model(solver.OptimalDesign)
+FlutterResponse = response_model(solver.FlutterResult)

@@ -390,13 +390,16 @@ def test_invalid_requests_name_the_field(arguments: dict, field: str):
 @pytest.mark.parametrize(
     ("changes", "field"),
     [
-        ({"modes": 0}, "flutter.modes"),
-        ({"modes": 2.5}, "flutter.modes"),
-        ({"tolerance": 0.1}, "flutter.tolerance"),
-        ({"unsteady": "wagner"}, "flutter.unsteady"),
+        ({"modes": 0}, "modes"),
+        ({"modes": 2.5}, "modes"),
+        ({"tolerance": 0.1}, "tolerance"),
+        ({"unsteady": "wagner"}, "unsteady"),
+        ({"about": "trim"}, "about"),
     ],
+    ids=["no-modes", "half-a-mode", "loose", "unknown-lag", "unknown-state"],
 )
 def test_invalid_flutter_options_name_the_field(changes: dict, field: str):
+    """Named from the options themselves; a request names them from its root (flutter.modes)."""
     with pytest.raises(InvalidInput) as raised:
         FlutterOptions(**changes)
     assert raised.value.field == field

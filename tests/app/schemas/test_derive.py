@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 import solver
-from app.schemas import OptimizeRequest, SolveRequest, SweepRequest, derive
+from app.schemas import FlutterRequest, OptimizeRequest, SolveRequest, SweepRequest, derive
 from solver import InvalidInput
 from tests import study
 
@@ -19,6 +19,7 @@ OPERATIONS = {
     "solve": (solver.SolveInput, SolveRequest),
     "sweep": (solver.SweepInput, SweepRequest),
     "optimize": (solver.OptimizeInput, OptimizeRequest),
+    "flutter": (solver.FlutterInput, FlutterRequest),
 }
 # Forms whose JSON Schema numbers carry the declared limits (on the value or on its items).
 NUMERIC = ("number", "integer", "per_station", "positions", "diameter", "deformation")
