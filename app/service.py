@@ -18,7 +18,14 @@ from pydantic import BaseModel
 
 from app.cache import ResultCache
 from app.execution import worker
-from app.execution.pool import BudgetExceeded, NotReady, Overloaded, WorkerLost, WorkerPool
+from app.execution.pool import (
+    BudgetExceeded,
+    NotReady,
+    Overloaded,
+    Progress,
+    WorkerLost,
+    WorkerPool,
+)
 from app.metrics import Metrics
 from app.problems import FieldError, Problem, problem_of
 from app.schemas.derive import RequestModel
@@ -91,12 +98,14 @@ class Service:
         """The solver input of a validated request (`task_of`)."""
         return task_of(request, self.settings)
 
-    async def answer(self, operation: str, request: BaseModel) -> Payload:
+    async def answer(
+        self, operation: str, request: BaseModel, progress: Progress | None = None
+    ) -> Payload:
         """The response payload of `request` to `operation` (a key of `OPERATIONS`), or the
-        problem that says why there is none."""
-        return await self.run(operation, self.task(request))
+        problem that says why there is none; `progress(done, total)` as its parts are done."""
+        return await self.run(operation, self.task(request), progress)
 
-    async def run(self, operation: str, task: Any) -> Payload:
+    async def run(self, operation: str, task: Any, progress: Progress | None = None) -> Payload:
         """The payload of a solver input's answer: from the result cache (marked so) or from
         a worker (and then cached)."""
         key = (operation, task.key)
@@ -107,7 +116,8 @@ class Service:
         if hit is not None:
             return _cached(hit)
         kind = OPERATIONS[operation]
-        outcome = await self._in_a_worker(task, getattr(self.settings, kind.budget), operation)
+        budget = getattr(self.settings, kind.budget)
+        outcome = await self._in_a_worker(task, budget, operation, progress)
         if outcome.error is not None:
             self.metrics.solves.labels(operation, _label(outcome.error)).inc()
             self.results.put(key, outcome.error)
@@ -117,12 +127,16 @@ class Service:
         self.results.put(key, outcome.payload)
         return outcome.payload
 
-    async def _in_a_worker(self, task: Any, budget: float, operation: str) -> worker.Outcome:
+    async def _in_a_worker(
+        self, task: Any, budget: float, operation: str, progress: Progress | None
+    ) -> worker.Outcome:
         """Run a task in the pool; the pool's failures become 503/504 problems."""
         started = time.perf_counter()
         retry_after = {"Retry-After": str(self.settings.retry_after)}
         try:
-            outcome = await self.pool.run(worker.run, task, timeout=budget, kind=operation)
+            outcome = await self.pool.run(
+                worker.run, task, timeout=budget, kind=operation, progress=progress
+            )
         except Overloaded as error:
             raise Problem("overloaded", str(error), headers=retry_after) from None
         except NotReady as error:

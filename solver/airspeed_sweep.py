@@ -18,6 +18,7 @@ from solver.results import (
     AirspeedSweep,
     AirspeedSweepInfo,
     DivergenceSummary,
+    Progress,
 )
 from solver.solve import solve
 from solver.system import CoupledSystem
@@ -32,10 +33,12 @@ def airspeed_sweep(
     velocities: Sequence[float],
     flight: FlightCondition,
     options: SolverOptions | None = None,
+    progress: Progress | None = None,
 ) -> AirspeedSweep:
     """Solve at each airspeed [m/s], answered in the given order, flying as `flight` says (its
     own velocity, if any, is not used): at its angle of attack, or trimmed to its lift
-    (`solver.trim.trimmed_airspeed_sweep`).
+    (`solver.trim.trimmed_airspeed_sweep`). `progress(done, total)` is called as each airspeed
+    is answered.
 
     At an angle of attack the branch from the jig shape is followed first, to its fold (or to
     1.5 times the fastest speed and past the linear divergence speed): a speed beyond the fold
@@ -47,13 +50,18 @@ def airspeed_sweep(
     options = options or SolverOptions()
     lift = flight.required_lift
     if lift is not None:
-        return trimmed_airspeed_sweep(wing, velocities, lift, flight.density, options)
+        return trimmed_airspeed_sweep(wing, velocities, lift, flight.density, options, progress)
     assert flight.alpha is not None
-    return _at_alpha(wing, velocities, flight.alpha, flight.density, options)
+    return _at_alpha(wing, velocities, flight.alpha, flight.density, options, progress)
 
 
 def _at_alpha(
-    wing: Wing, velocities: Sequence[float], alpha: float, density: float, options: SolverOptions
+    wing: Wing,
+    velocities: Sequence[float],
+    alpha: float,
+    density: float,
+    options: SolverOptions,
+    progress: Progress | None,
 ) -> AirspeedSweep:
     started = time.perf_counter()
     system = CoupledSystem.of(wing, alpha, options)
@@ -75,8 +83,10 @@ def _at_alpha(
                     equilibrium = from_branch(system, point, options, 0, velocity_limit=limit)
         except SolverError as error:
             points.append(AirspeedPoint.failed(velocity, error))
-            continue
-        points.append(AirspeedPoint(None, velocity, "equilibrium", equilibrium, None))
+        else:
+            points.append(AirspeedPoint(None, velocity, "equilibrium", equilibrium, None))
+        if progress is not None:
+            progress(len(points), len(velocities))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
     divergence = DivergenceSummary(
         linear=linear_divergence(wing, density, options),

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -62,7 +62,7 @@ from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import at_rest, linear_pressure
 from solver.mass import MassModel
 from solver.modes import Structure, mode_shape, structure
-from solver.results import Equilibrium
+from solver.results import Equilibrium, Progress
 from solver.solve import solve
 from solver.system import CoupledSystem
 from solver.unsteady import UnsteadyAerodynamics, theodorsen, unsteady_aerodynamics
@@ -81,8 +81,6 @@ _SPEED_TOLERANCE = 1e-10
 _SECANT_ITERATIONS = 60
 # A divergence shape inside the natural modes' span to this fraction needs no basis vector.
 _INSIDE_SPAN = 1e-9
-
-Progress = Callable[[int, int], None]
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from solver.airspeed_sweep import airspeed_sweep
 from solver.design import DesignProblem
 from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.flutter import FlutterOptions, Progress, flutter
+from solver.flutter import FlutterOptions, flutter
 from solver.flutter_results import FlutterResult
 from solver.inputs import (
     FLIGHT_RULE,
@@ -29,7 +29,7 @@ from solver.inputs import (
     Wing,
 )
 from solver.optimize import optimize
-from solver.results import AirspeedSweep, Equilibrium, OptimalDesign
+from solver.results import AirspeedSweep, Equilibrium, OptimalDesign, Progress
 from solver.solve import solve
 
 __all__ = ["OPERATIONS", "FlutterInput", "OptimizeInput", "SolveInput", "SweepInput"]
@@ -94,7 +94,8 @@ class SolveInput:
     def key(self) -> bytes:
         return fields.digest(self)
 
-    def run(self) -> Equilibrium:
+    def run(self, progress: Progress | None = None) -> Equilibrium:
+        """The answer (`progress` is for the operations that have parts: none here)."""
         return solve(self.wing, self.flight, self.initial_guess, self.modelled)
 
 
@@ -140,8 +141,9 @@ class SweepInput:
         """The same airspeeds given as a list or as a range are one sweep."""
         return fields.digest((self.wing, self.flight, self.airspeeds, self.options))
 
-    def run(self) -> AirspeedSweep:
-        return airspeed_sweep(self.wing, self.airspeeds, self.flight, self.modelled)
+    def run(self, progress: Progress | None = None) -> AirspeedSweep:
+        """The answer; `progress(done, total)` as each airspeed is answered."""
+        return airspeed_sweep(self.wing, self.airspeeds, self.flight, self.modelled, progress)
 
 
 @dataclass(frozen=True, eq=False)
@@ -168,7 +170,8 @@ class OptimizeInput:
     def key(self) -> bytes:
         return fields.digest(self)
 
-    def run(self) -> OptimalDesign:
+    def run(self, progress: Progress | None = None) -> OptimalDesign:
+        """The answer (`progress` is for the operations that have parts: none here)."""
         return optimize(self.wing, self.problem, self.modelled)
 
 
@@ -230,6 +233,7 @@ class FlutterInput:
         return fields.digest((self.wing, self.flight, self.airspeeds, self.options, self.flutter))
 
     def run(self, progress: Progress | None = None) -> FlutterResult:
+        """The answer; `progress(done, total)` as each airspeed is analysed."""
         settings = self.flutter or FlutterOptions()
         loaded = settings.about == "equilibrium"
         return flutter(

@@ -11,6 +11,7 @@ both halves of the wing.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -21,6 +22,7 @@ from solver.evaluation import Evaluation
 from solver.inputs import OperatingPoint, SolverOptions, Wing
 
 __all__ = [
+    "Progress",
     "DivergenceSummary",
     "Equilibrium",
     "FINDING_CODES",
@@ -43,6 +45,10 @@ __all__ = [
     "Totals",
     "quantity",
 ]
+
+
+# What long work reports as it goes: progress(done, total), e.g. airspeeds answered of a sweep's.
+Progress = Callable[[int, int], None]
 
 
 def quantity(unit: str, description: str, **kwargs: Any) -> Any:

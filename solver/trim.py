@@ -61,6 +61,7 @@ from solver.results import (
     DivergenceSummary,
     Equilibrium,
     Fold,
+    Progress,
 )
 from solver.system import CoupledSystem
 from solver.validity import onsets
@@ -489,6 +490,7 @@ def trimmed_airspeed_sweep(
     lift: float,
     density: float,
     options: SolverOptions | None = None,
+    progress: Progress | None = None,
 ) -> AirspeedSweep:
     """The wing trimmed to `lift` [N] at each airspeed [m/s], answered in the given order.
 
@@ -505,6 +507,8 @@ def trimmed_airspeed_sweep(
     limit = trimmed_divergence_limit(wing, lift, density, options)
     points: list[AirspeedPoint] = []
     for velocity in velocities:
+        if progress is not None and points:
+            progress(len(points), len(velocities))
         beyond = _beyond(limit, velocity)
         if beyond is not None:
             points.append(AirspeedPoint.failed(velocity, beyond))
@@ -521,6 +525,8 @@ def trimmed_airspeed_sweep(
             points.append(AirspeedPoint.failed(velocity, error))
             continue
         points.append(AirspeedPoint(None, velocity, "equilibrium", equilibrium, None))
+    if progress is not None:
+        progress(len(points), len(velocities))
     stable = [p.equilibrium for p in points if p.equilibrium is not None]
     divergence = DivergenceSummary(
         linear=linear_divergence(wing, density, options),

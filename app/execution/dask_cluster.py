@@ -37,7 +37,14 @@ from distributed import Client, KilledWorker
 from distributed.client import FutureCancelledError
 
 from app.execution import worker
-from app.execution.pool import BudgetExceeded, Capacity, ClusterWorkerInfo, NotReady, WorkerDied
+from app.execution.pool import (
+    BudgetExceeded,
+    Capacity,
+    ClusterWorkerInfo,
+    NotReady,
+    Progress,
+    WorkerDied,
+)
 from app.metrics import Metrics
 from app.settings import Settings
 
@@ -208,7 +215,10 @@ class DaskWorkers:
 
     # --------------------------------------------------------------------------- running
 
-    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
+    async def attempt(
+        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+    ) -> T:
+        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._client is None:

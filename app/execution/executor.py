@@ -16,7 +16,14 @@ from concurrent.futures import BrokenExecutor, Executor, Future
 from typing import Any, TypeVar
 
 from app.execution import worker
-from app.execution.pool import BudgetExceeded, Capacity, ClusterWorkerInfo, NotReady, WorkerDied
+from app.execution.pool import (
+    BudgetExceeded,
+    Capacity,
+    ClusterWorkerInfo,
+    NotReady,
+    Progress,
+    WorkerDied,
+)
 from app.settings import Settings
 
 __all__ = ["ExecutorWorkers"]
@@ -100,7 +107,10 @@ class ExecutorWorkers:
             self._executor.shutdown(wait=False, cancel_futures=True)
         self._detail = "closed"
 
-    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
+    async def attempt(
+        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+    ) -> T:
+        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._executor is None:

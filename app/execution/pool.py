@@ -39,6 +39,7 @@ from app.settings import Settings
 
 __all__ = [
     "Backend",
+    "Progress",
     "Capacity",
     "ClusterWorkerInfo",
     "Collateral",
@@ -54,6 +55,9 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 T = TypeVar("T")
+
+# What a task reports as it goes, on the event loop: progress(done, total).
+Progress = Callable[[int, int], None]
 
 # Threads of numerical libraries per worker: the pool is the parallelism.
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
@@ -174,7 +178,12 @@ class Backend(Protocol):
 
     async def wait_ready(self) -> None: ...
 
-    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T: ...
+    async def attempt(
+        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+    ) -> T:
+        """Run `fn(task)` once (`fn(task, progress)` with `progress`, which the backend calls
+        on the event loop as the worker reports, where it can)."""
+        ...
 
     async def close(self) -> None: ...
 
@@ -286,7 +295,15 @@ class WorkerPool:
 
     # --------------------------------------------------------------------------- running
 
-    async def run(self, fn: Callable[[Any], T], task: Any, *, timeout: float, kind: str) -> T:
+    async def run(
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        *,
+        timeout: float,
+        kind: str,
+        progress: Progress | None = None,
+    ) -> T:
         """Run `fn(task)` in a worker within `timeout` seconds of its start."""
         if self.backend is None or not self.backend.started or self._closing:
             raise NotReady(self.detail)
@@ -296,13 +313,19 @@ class WorkerPool:
         self._pending += 1
         self.metrics.pending.set(self._pending)
         try:
-            return await self._run_with_retries(self.backend, fn, task, timeout, kind)
+            return await self._run_with_retries(self.backend, fn, task, timeout, kind, progress)
         finally:
             self._pending -= 1
             self.metrics.pending.set(self._pending)
 
     async def _run_with_retries(
-        self, backend: Backend, fn: Callable[[Any], T], task: Any, timeout: float, kind: str
+        self,
+        backend: Backend,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        kind: str,
+        progress: Progress | None,
     ) -> T:
         """One attempt, one more if its worker died (setting), free ones for collateral."""
         attempts = 2 if self.settings.retry_on_worker_loss else 1
@@ -311,7 +334,7 @@ class WorkerPool:
             if self._closing:
                 raise NotReady("the service is shutting down")
             try:
-                return await backend.attempt(fn, task, timeout)
+                return await backend.attempt(fn, task, timeout, progress)
             except BudgetExceeded:
                 self.metrics.solves.labels(kind, "timeout").inc()
                 raise

@@ -7,6 +7,7 @@ one-way `Pipe`). A reader thread per worker waits on the outbox and on the proce
 
     ("warm", WarmReport)         once, after compiling or loading the warm mesh sizes;
     ("started", seq)             when it begins task `seq` (its time budget starts here);
+    ("progress", seq, done, total)  as a task that reports its progress goes;
     ("done", seq, ok, value)     with the task's result, or the exception it raised.
 
 When its outbox ends (EOF) and the process has exited, the worker is gone: its tasks fail with
@@ -42,6 +43,7 @@ from app.execution.pool import (
     ClusterWorkerInfo,
     Collateral,
     NotReady,
+    Progress,
     WorkerDied,
 )
 from app.metrics import Metrics
@@ -71,15 +73,21 @@ def serve(
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     outbox.send(("warm", worker.warm(warm_stations, warmup_timeout)))
     while (message := inbox.get()) is not None:
-        seq, fn, task = pickle.loads(message)
+        seq, fn, task, reports = pickle.loads(message)
         outbox.send(("started", seq))
-        outbox.send_bytes(_outcome(seq, fn, task))
+        outbox.send_bytes(_outcome(seq, fn, task, outbox if reports else None))
 
 
-def _outcome(seq: int, fn: Callable[[Any], Any], task: Any) -> bytes:
-    """The pickled ("done", seq, ok, value) message of one task; an unpicklable error as text."""
+def _outcome(seq: int, fn: Callable[..., Any], task: Any, outbox: Connection | None) -> bytes:
+    """The pickled ("done", seq, ok, value) message of one task; an unpicklable error as text.
+    With an `outbox`, the task reports its progress there as it goes."""
+
+    def progress(done: int, total: int) -> None:
+        assert outbox is not None
+        outbox.send(("progress", seq, done, total))
+
     try:
-        value, ok = fn(task), True
+        value, ok = (fn(task) if outbox is None else fn(task, progress)), True
     except Exception as error:
         value, ok = error, False
     try:
@@ -99,6 +107,7 @@ class _Dispatch:
     seq: int
     future: asyncio.Future[Any]
     started: float | None = None
+    progress: Progress | None = None
 
 
 @dataclass(eq=False)
@@ -279,6 +288,10 @@ class LocalWorkers:
             if dispatch is not None:
                 assert self._loop is not None
                 dispatch.started = self._loop.time()
+        elif kind == "progress":
+            dispatch = w.assigned.get(message[1])
+            if dispatch is not None and dispatch.progress is not None:
+                dispatch.progress(message[2], message[3])
         elif kind == "done":
             self._on_done(w, *message[1:])
 
@@ -357,14 +370,17 @@ class LocalWorkers:
 
     # --------------------------------------------------------------------------- running
 
-    async def attempt(self, fn: Callable[[Any], T], task: Any, timeout: float) -> T:
-        """Run `fn(task)` once in the least busy worker, within `timeout` s of its start."""
+    async def attempt(
+        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+    ) -> T:
+        """Run `fn(task)` once in the least busy worker, within `timeout` s of its start
+        (`fn(task, report)` with `progress`, called here as the worker reports)."""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing:
                 raise NotReady("the service is shutting down")
             w = self._least_busy()
-            dispatch = self._hand_over(w, fn, task)
+            dispatch = self._hand_over(w, fn, task, progress)
             return await self._outcome(w, dispatch, timeout)  # type: ignore[no-any-return]
 
     def _least_busy(self) -> _Worker:
@@ -373,11 +389,14 @@ class LocalWorkers:
             raise Collateral("the worker pool is being replaced")
         return min(alive, key=lambda w: len(w.assigned))
 
-    def _hand_over(self, w: _Worker, fn: Callable[[Any], Any], task: Any) -> _Dispatch:
+    def _hand_over(
+        self, w: _Worker, fn: Callable[..., Any], task: Any, progress: Progress | None
+    ) -> _Dispatch:
         assert self._loop is not None
         self._seq += 1
-        message = pickle.dumps((self._seq, fn, task))  # here: a bad task fails its own request
-        dispatch = _Dispatch(self._seq, self._loop.create_future())
+        # Pickled here: a task that does not pickle fails its own request.
+        message = pickle.dumps((self._seq, fn, task, progress is not None))
+        dispatch = _Dispatch(self._seq, self._loop.create_future(), progress=progress)
         # Its caller may be gone when it fails (a timeout, a cancelled task): nobody must care.
         dispatch.future.add_done_callback(lambda f: f.cancelled() or f.exception())
         w.assigned[self._seq] = dispatch

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from app.schemas.responses import payload
-from solver import InvalidInput, SolverError, warm_up
+from solver import InvalidInput, Progress, SolverError, warm_up
 
 __all__ = ["Outcome", "WarmReport", "run", "warm"]
 
@@ -56,10 +56,10 @@ def warm(warm_stations: tuple[int, ...], timeout: float) -> WarmReport:
     return WarmReport(os.getpid(), compiled)
 
 
-def run(task: Any) -> Outcome:
-    """The answer to one operation input (`task.run()`), as data."""
+def run(task: Any, progress: Progress | None = None) -> Outcome:
+    """The answer to one operation input (`task.run(progress)`), as data."""
     try:
-        result = task.run()
+        result = task.run(progress)
     except (SolverError, InvalidInput) as error:
         return Outcome(None, error)
     return Outcome(payload(result))

@@ -131,6 +131,9 @@ class _Context:
     def item_answered(self, index: int, ok: bool, line: str) -> None:
         self.manager.item_answered(self.job, index, ok, line)
 
+    def progress(self, done: int, total: int) -> None:
+        self.manager.progressed(self.job, done)
+
 
 class JobManager:
     def __init__(
@@ -320,6 +323,18 @@ class JobManager:
             job.progress_written = now
             progress = {"done": job.done, "problems": job.problems}
             self.store.write(store.update_job, job.id, progress)
+        job.notify()
+
+    def progressed(self, job: LiveJob, done: int) -> None:
+        """`done` of the job's units are done (its answer still to come): shown at once, written
+        at most every _PROGRESS_INTERVAL s."""
+        if job.status != "running" or done <= job.done:
+            return
+        job.done = min(done, job.total)
+        now = time.monotonic()
+        if now - job.progress_written >= _PROGRESS_INTERVAL:
+            job.progress_written = now
+            self.store.write(store.update_job, job.id, {"done": job.done})
         job.notify()
 
     def _finish(

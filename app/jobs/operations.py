@@ -67,6 +67,10 @@ class JobContext(Protocol):
         """Record batch item `index`'s NDJSON line (ok: a result, else a problem)."""
         ...
 
+    def progress(self, done: int, total: int) -> None:
+        """Record that `done` of the job's `total` units are done (a sweep's airspeeds)."""
+        ...
+
 
 @dataclass(frozen=True)
 class Operation:
@@ -123,7 +127,8 @@ def _answering(name: str, model: type[BaseModel]) -> Callable[[JobContext, Any],
     """A job that answers what the endpoint `name` answers."""
 
     async def run(context: JobContext, request: Any) -> str:
-        payload = await patiently(lambda: context.service.answer(name, request))
+        answer = context.service.answer
+        payload = await patiently(lambda: answer(name, request, context.progress))
         return _json(model)(payload)
 
     return run

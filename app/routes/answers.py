@@ -6,6 +6,7 @@ nothing is lost and no valid request ends in a 504."""
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Callable
 from typing import Any
 
 from fastapi import Request
@@ -18,6 +19,17 @@ from app.security import principal
 from app.service import OPERATIONS, Service
 
 __all__ = ["answer", "preferred_wait"]
+
+
+class _Relay:
+    """A running call's progress, passed on to whoever takes it (the job it becomes)."""
+
+    def __init__(self) -> None:
+        self.to: Callable[[int, int], None] | None = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.to is not None:
+            self.to(done, total)
 
 
 def preferred_wait(prefer: str | None) -> float | None:
@@ -40,7 +52,8 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
     budget: float = getattr(settings, OPERATIONS[operation].budget)
     wait = preferred_wait(request.headers.get("prefer"))
     wait = settings.sync_wait if wait is None else min(wait, budget)
-    running = asyncio.ensure_future(service.run(operation, task))
+    reports = _Relay()
+    running = asyncio.ensure_future(service.run(operation, task, reports))
     try:
         return await asyncio.wait_for(asyncio.shield(running), wait)
     except TimeoutError:
@@ -48,5 +61,6 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
     manager: JobManager = request.app.state.jobs
     total = len(task.airspeeds) if hasattr(task, "airspeeds") else 1
     job = manager.adopt(operation, running, total, principal=principal(request))
+    reports.to = lambda done, total: manager.progressed(job, done)
     view = job_view(job.row(), manager.operations)
     return JSONResponse(view, status_code=202, headers={"Location": view["links"]["self"]})

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 
 
 def sleep_then_pid(seconds: float) -> int:
@@ -14,3 +15,10 @@ def sleep_then_pid(seconds: float) -> int:
 
 def fail(message: str) -> None:
     raise ValueError(message)
+
+
+def counts_to(total: int, progress: Callable[[int, int], None]) -> int:
+    """Reports each of `total` steps done, then answers how many there were."""
+    for done in range(1, total + 1):
+        progress(done, total)
+    return total

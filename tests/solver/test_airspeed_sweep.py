@@ -100,3 +100,19 @@ def test_points_beyond_the_fold_say_why():
     assert beyond.status == "no_equilibrium" and beyond.equilibrium is None
     assert beyond.no_equilibrium.fold_velocity == pytest.approx(21.4397, abs=1e-4)
     assert "beyond the fold" in beyond.no_equilibrium.reason
+
+
+@pytest.mark.parametrize(
+    "flight",
+    [solver.FlightCondition(None, 5.0, DENSITY), solver.FlightCondition(None, lift=300.0)],
+    ids=["alpha", "trimmed"],
+)
+def test_a_sweep_reports_each_airspeed_as_it_is_answered(flight: solver.FlightCondition):
+    """What a sweep job shows: one report per airspeed, in order, the last when all are in."""
+    reports: list[tuple[int, int]] = []
+    speeds = [8.0, 23.0, 12.0, 40.0]
+    result = solver.airspeed_sweep(
+        study_wing(), speeds, flight, progress=lambda *r: reports.append(r)
+    )
+    assert reports == [(done, 4) for done in range(1, 5)]
+    assert [p.velocity for p in result.points] == speeds

@@ -135,3 +135,21 @@ def test_an_exception_in_a_job_reaches_its_caller_and_the_worker_lives_on() -> N
 
     before, after = _with_pool(LOCAL, scenario)
     assert before == after
+
+
+def test_a_tasks_progress_reaches_its_caller_as_the_worker_reports_it() -> None:
+    """What a sweep's job shows as its airspeeds are answered: every report, in order, before
+    the answer."""
+    reports: list[tuple[int, int]] = []
+
+    async def scenario(pool: WorkerPool) -> int:
+        return await pool.run(
+            pool_jobs.counts_to,
+            5,
+            timeout=10.0,
+            kind="sweep",
+            progress=lambda *r: reports.append(r),
+        )
+
+    assert _with_pool(LOCAL, scenario) == 5
+    assert reports == [(done, 5) for done in range(1, 6)]
