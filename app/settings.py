@@ -1,12 +1,13 @@
 """Service settings, read from environment variables prefixed with ``FLEXWING_``.
 
-Every field below is documented with its unit; the README's settings table mirrors them. The
-solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING_CC``,
+Every field below is documented with its unit; docs/deployment.md's settings table is generated
+from them (``table()``). The solver's own variables (``FLEXWING_CACHE_DIR``, ``FLEXWING_COMPILE``, ``FLEXWING_CC``,
 ``FLEXWING_SOLVER_CACHE_BYTES``) are read by the solver directly and are not repeated here.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import re
 from functools import lru_cache
@@ -23,6 +24,7 @@ __all__ = [
     "Settings",
     "default_jobs_db",
     "get_settings",
+    "table",
 ]
 
 # Hard ceiling on every array in a request, whatever the settings: validation stops at one
@@ -63,9 +65,9 @@ class Settings(BaseSettings):
     executor: str = Field(
         default="process",
         description=(
-            "'process' for the local process pool, or 'module:callable' naming a factory that "
-            "takes the Settings and returns a concurrent.futures.Executor (e.g. a Dask "
-            "Client(...).get_executor())."
+            "'process' for the local worker processes, 'dask' for a Dask cluster "
+            "(FLEXWING_DASK_SCHEDULER), or 'module:callable' naming a factory that takes the "
+            "Settings and returns a concurrent.futures.Executor."
         ),
     )
     start_method: Literal["forkserver", "spawn"] = Field(
@@ -98,7 +100,8 @@ class Settings(BaseSettings):
         default=10.0,
         gt=0,
         description=(
-            "[s] how long a synchronous request (/solve, /sweep, /optimize) waits for its answer; "
+            "[s] how long a synchronous request (/solve, /sweep, /optimize, /flutter) waits for "
+            "its answer; "
             "past it the request becomes a job at once (202 Accepted, Location: /jobs/{id}) "
             "that runs on within its time budget. A client may ask for a longer wait, up to that "
             "budget, with Prefer: wait=<seconds> (RFC 7240)."
@@ -263,6 +266,33 @@ class Settings(BaseSettings):
             if not re.fullmatch(r"https?://[^/\s*]+", origin):
                 raise ValueError(f"not an origin (scheme://host[:port], no path): {origin!r}")
         return origins
+
+
+def _default(name: str) -> str:
+    """A setting's default as the table shows it."""
+    field = Settings.model_fields[name]
+    if field.default_factory is not None:
+        return {"workers": "CPUs available", "jobs_db": "~/.cache/flexwing/jobs.sqlite3"}.get(
+            name, "computed"
+        )
+    value = field.default
+    if value is None:
+        return "unset"
+    if isinstance(value, list):
+        return json.dumps(value)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+def table() -> str:
+    """The settings as a Markdown table (docs/deployment.md holds it; a test keeps it current):
+    each variable, its default and what it means, from the fields' own descriptions."""
+    rows = ["| variable | default | meaning |", "| --- | --- | --- |"]
+    for name, field in Settings.model_fields.items():
+        meaning = " ".join((field.description or "").split()).replace("|", "\\|")
+        rows.append(f"| `FLEXWING_{name.upper()}` | `{_default(name)}` | {meaning} |")
+    return "\n".join(rows) + "\n"
 
 
 @lru_cache(maxsize=1)

@@ -1,5 +1,5 @@
 """Load (issue 5, part 4), bounded for CI: the load generator of benchmarks/load_benchmark.py for
-a few seconds. No latency is asserted here; the 60-second figures are in the README.
+a few seconds. No latency is asserted here; the 60-second figures are in docs/performance.md.
 
 - 16 clients on mixed /solve and /sweep traffic for 5 s: every request answered with 200.
 - Sustained overload (32 clients against FLEXWING_MAX_PENDING=4): the excess is shed with 503
