@@ -2,7 +2,8 @@
 
 request model -> `task` (the service's limits, then the solver input it describes: the
 request's one change of form) -> result cache -> the pool runs `app.execution.worker.run` ->
-result cache -> the response's payload, or the problem its error maps to (`app.problems`).
+result cache -> the response body the worker serialised (`app.schemas.Answer`), or the problem
+its error maps to (`app.problems`).
 
 The service keeps no solver state between requests: every solve starts from the wing itself, so
 the answer to a request never depends on the requests before it.
@@ -11,8 +12,9 @@ the answer to a request never depends on the requests before it.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 from pydantic import BaseModel
 
@@ -30,12 +32,13 @@ from app.metrics import Metrics
 from app.problems import FieldError, Problem, problem_of
 from app.schemas.derive import RequestModel
 from app.schemas.limits import panel_errors, station_and_point_errors
+from app.schemas.responses import Answer
 from app.settings import Settings
 from solver import InvalidInput, SolverError
 
 __all__ = ["OPERATIONS", "Operation", "Service", "task_of"]
 
-Payload = dict[str, Any]
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -54,13 +57,6 @@ OPERATIONS = {
     "optimize": Operation("optimize", "optimize_timeout", "optimum"),
     "flutter": Operation("flutter", "flutter_timeout", "analysed"),
 }
-
-
-def _cached(payload: Payload) -> Payload:
-    """A payload answered from the result cache says so, where it has a `solver` block."""
-    if "solver" not in payload:
-        return payload
-    return payload | {"solver": payload["solver"] | {"cached": True, "seconds": 0.0}}
 
 
 def _label(error: SolverError | InvalidInput) -> str:
@@ -90,7 +86,7 @@ class Service:
         self.settings = settings
         self.pool = pool
         self.metrics = metrics
-        self.results: ResultCache[Payload | SolverError | InvalidInput] = ResultCache(
+        self.results: ResultCache[Answer | SolverError | InvalidInput] = ResultCache(
             settings.result_cache_bytes
         )
 
@@ -100,42 +96,84 @@ class Service:
 
     async def answer(
         self, operation: str, request: BaseModel, progress: Progress | None = None
-    ) -> Payload:
-        """The response payload of `request` to `operation` (a key of `OPERATIONS`), or the
+    ) -> bytes:
+        """The response body of `request` to `operation` (a key of `OPERATIONS`), or the
         problem that says why there is none; `progress(done, total)` as its parts are done."""
         return await self.run(operation, self.task(request), progress)
 
-    async def run(self, operation: str, task: Any, progress: Progress | None = None) -> Payload:
-        """The payload of a solver input's answer: from the result cache (marked so) or from
-        a worker (and then cached)."""
+    async def run(self, operation: str, task: Any, progress: Progress | None = None) -> bytes:
+        """The response body of a solver input's answer: from the result cache (marked so) or
+        from a worker (and then cached)."""
         key = (operation, task.key)
+        hit = self._cached(key)
+        if hit is not None:
+            return hit
+        budget = getattr(self.settings, OPERATIONS[operation].budget)
+        outcome = await self._in_a_worker(worker.run, task, budget, operation, progress)
+        return self._recorded(operation, key, outcome)
+
+    async def run_each(self, operation: str, tasks: Sequence[Any]) -> list[bytes | Problem]:
+        """The answers of many inputs of one operation (a batch's chunk), each its response
+        body or its problem: cached ones from the cache, the others as one worker task (one
+        round trip, one Dask task, for all of them) whose budget is theirs together.
+
+        Raises the pool's problem when the chunk could not be answered as a whole (the pool
+        full or not ready, its worker lost, its budget spent): the caller decides whether to
+        wait, or to ask again one input at a time.
+        """
+        keys = [(operation, task.key) for task in tasks]
+        answers: list[bytes | Problem | None] = []
+        for key in keys:
+            try:
+                answers.append(self._cached(key))
+            except Problem as problem:
+                answers.append(problem)
+        missing = [i for i, answer in enumerate(answers) if answer is None]
+        if missing:
+            budget = getattr(self.settings, OPERATIONS[operation].budget) * len(missing)
+            chunk = tuple(tasks[i] for i in missing)
+            outcomes = await self._in_a_worker(worker.run_each, chunk, budget, operation, None)
+            for i, outcome in zip(missing, outcomes, strict=True):
+                try:
+                    answers[i] = self._recorded(operation, keys[i], outcome)
+                except Problem as problem:
+                    answers[i] = problem
+        return [answer for answer in answers if answer is not None]
+
+    def _cached(self, key: tuple[str, bytes]) -> bytes | None:
+        """The cached answer's body (marked as cached), its problem raised, or None."""
         hit = self.results.get(key)
         self.metrics.cache.labels("result", "miss" if hit is None else "hit").inc()
         if isinstance(hit, SolverError | InvalidInput):
             raise problem_of(hit)
-        if hit is not None:
-            return _cached(hit)
-        kind = OPERATIONS[operation]
-        budget = getattr(self.settings, kind.budget)
-        outcome = await self._in_a_worker(task, budget, operation, progress)
+        return None if hit is None else hit.body(cached=True)
+
+    def _recorded(self, operation: str, key: tuple[str, bytes], outcome: worker.Outcome) -> bytes:
+        """A worker's outcome counted and cached: its body, or its problem raised."""
         if outcome.error is not None:
             self.metrics.solves.labels(operation, _label(outcome.error)).inc()
             self.results.put(key, outcome.error)
             raise problem_of(outcome.error)
-        assert outcome.payload is not None
-        self.metrics.solves.labels(operation, kind.answered).inc()
-        self.results.put(key, outcome.payload)
-        return outcome.payload
+        answer = outcome.answer
+        assert answer is not None
+        self.metrics.solves.labels(operation, OPERATIONS[operation].answered).inc()
+        self.results.put(key, answer, answer.nbytes)
+        return answer.body()
 
     async def _in_a_worker(
-        self, task: Any, budget: float, operation: str, progress: Progress | None
-    ) -> worker.Outcome:
-        """Run a task in the pool; the pool's failures become 503/504 problems."""
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        budget: float,
+        operation: str,
+        progress: Progress | None,
+    ) -> T:
+        """Run `fn(task)` in the pool; the pool's failures become 503/504 problems."""
         started = time.perf_counter()
         retry_after = {"Retry-After": str(self.settings.retry_after)}
         try:
             outcome = await self.pool.run(
-                worker.run, task, timeout=budget, kind=operation, progress=progress
+                fn, task, timeout=budget, kind=operation, progress=progress
             )
         except Overloaded as error:
             raise Problem("overloaded", str(error), headers=retry_after) from None
@@ -146,5 +184,6 @@ class Service:
         except BudgetExceeded as error:
             spent = {"timeout": error.timeout}
             raise Problem("solve-timeout", str(error), extensions=spent) from None
-        self.metrics.solve_seconds.labels(operation).observe(time.perf_counter() - started)
-        return outcome  # type: ignore[no-any-return]
+        if fn is worker.run:  # a chunk's time is not one answer's
+            self.metrics.solve_seconds.labels(operation).observe(time.perf_counter() - started)
+        return outcome

@@ -15,6 +15,11 @@ parsing of the body. Each deployment runs two batches of new items and reports b
 time per item of the service process and of the workers (Linux /proc; remote workers would need
 their own accounting).
 
+The capacity the service is held to is measured in the same run: 300 items of the same kind
+solved one after another in this process (`solver`, compiled, no HTTP, no workers), and
+capacity = workers / (time per item). Each deployment prints its throughput as a share of it
+(issue 27: the local pool >= 70 %; Dask with 2 workers >= 80 % of the local pool).
+
 The scheduler's own cost is measured with no-op tasks from a Dask client: the round trip of one
 task at a time, and the throughput of 2,000 tasks submitted at once.
 """
@@ -180,11 +185,32 @@ async def scheduler_cost(address: str) -> tuple[float, float]:
     return 1000 * one_at_a_time, 1000 * many
 
 
+def in_process_seconds(count: int = 300) -> float:
+    """[s] median time per item solved in this process, items like the batch's (run 99)."""
+    import solver
+    from app.schemas import SolveRequest
+
+    solver.warm_up(30)
+    tasks = [SolveRequest.model_validate(item(i, count, 99)).to_solver() for i in range(count)]
+    times = []
+    for task in tasks:
+        started = time.perf_counter()
+        task.run(None)
+        times.append(time.perf_counter() - started)
+    return float(np.median(times))
+
+
 def report(
-    label: str, count: int, base_url: str, service_pid: int, scheduler_pid: int | None = None
-) -> None:
+    label: str,
+    count: int,
+    base_url: str,
+    service_pid: int,
+    capacity: float,
+    scheduler_pid: int | None = None,
+) -> list[float]:
     """Two runs of `count` new items; CPU per item of the service, the workers and the Dask
-    scheduler [ms]."""
+    scheduler [ms]; the job's items/s of each run."""
+    rates = []
     for run in (1, 2):
         items = [item(i, count, run) for i in range(count)]
         pids = [[service_pid], worker_pids(base_url), [scheduler_pid] if scheduler_pid else []]
@@ -192,35 +218,54 @@ def report(
         job_rate, wall_rate, progress = run_batch(base_url, items)
         after = [sum(cpu_seconds(p) for p in group) for group in pids]
         web, work, scheduler = ((a - b) * 1000 / count for a, b in zip(after, before, strict=True))
+        rates.append(job_rate)
         print(
-            f"{label:<22} run {run}: {job_rate:5.0f} items/s (job), {wall_rate:5.0f} items/s "
-            f"(wall); CPU per item: service {web:.1f} ms, workers {work:.1f} ms"
-            + (f", scheduler {scheduler:.1f} ms" if scheduler_pid else "")
+            f"{label:<22} run {run}: {job_rate:5.0f} items/s (job, {job_rate / capacity:.0%} of "
+            f"capacity), {wall_rate:5.0f} items/s (wall); CPU per item: service {web:.2f} ms, "
+            f"workers {work:.2f} ms"
+            + (f", scheduler {scheduler:.2f} ms" if scheduler_pid else "")
             + f"; problems {progress['problems']}"
         )
+    return rates
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--items", type=int, default=1000)
+    parser.add_argument("--no-dask", action="store_true", help="the local pool only")
     args = parser.parse_args()
     quiet = {"OPENBLAS_NUM_THREADS": "1", "PYTHONUNBUFFERED": "1", "FLEXWING_RATE_LIMIT": "0"}
+    quiet |= {"FLEXWING_WARMUP_TIMEOUT": "600"}  # measured on compiled code
     env = os.environ | quiet
+    per_item = in_process_seconds()
+    workers = 2
+    capacity = workers / per_item
+    print(
+        f"{args.items} solves of varied wings (N = 30) in one batch job; in this process "
+        f"{per_item * 1e3:.2f} ms per item (median of 300): capacity of {workers} workers "
+        f"{capacity:.0f} items/s; load average {os.getloadavg()[0]:.2f}"
+    )
     with tempfile.TemporaryDirectory() as name:
         tmp = Path(name)
-        print(f"{args.items} solves of varied wings (N = 30) in one batch job")
-        with service(tmp, env | {"FLEXWING_WORKERS": "2"}, 2) as (base_url, pid):
-            report("local pool, 2 workers", args.items, base_url, pid)
-        for workers in (1, 2):
-            with dask_cluster(tmp, env, workers) as (address, scheduler):
+        with service(tmp, env | {"FLEXWING_WORKERS": str(workers)}, workers) as (base_url, pid):
+            local = report("local pool, 2 workers", args.items, base_url, pid, capacity)
+        if args.no_dask:
+            return
+        for count in (1, 2):
+            with dask_cluster(tmp, env, count) as (address, scheduler):
                 dask = {"FLEXWING_EXECUTOR": "dask", "FLEXWING_DASK_SCHEDULER": address}
-                with service(tmp, env | dask, workers) as (base_url, pid):
-                    report(f"dask, {workers} worker(s)", args.items, base_url, pid, scheduler)
+                with service(tmp, env | dask, count) as (base_url, pid):
+                    label = f"dask, {count} worker(s)"
+                    rates = report(label, args.items, base_url, pid, capacity, scheduler)
                 one, many = asyncio.run(scheduler_cost(address))
                 print(
-                    f"dask scheduler, {workers} worker(s): a no-op task takes {one:.1f} ms one at "
+                    f"dask scheduler, {count} worker(s): a no-op task takes {one:.1f} ms one at "
                     f"a time, {many:.2f} ms each when 2,000 are submitted at once"
                 )
+        print(
+            f"dask with 2 workers / local pool: {max(rates) / max(local):.0%} (best runs); "
+            f"load average {os.getloadavg()[0]:.2f}"
+        )
 
 
 if __name__ == "__main__":

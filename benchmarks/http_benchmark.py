@@ -91,7 +91,7 @@ def server(url: str | None) -> Iterator[str]:
             *("--host", "127.0.0.1", "--log-level", "warning", "--no-access-log"),
         ],
         cwd=ROOT,
-        env=os.environ | {"FLEXWING_RATE_LIMIT": "0"},  # the service, not its rate limit
+        env=os.environ | {"FLEXWING_RATE_LIMIT": "0", "FLEXWING_WARMUP_TIMEOUT": "600"},  # compiled
         start_new_session=True,  # its own process group: the workers go with it at the end
     )
     base = f"http://127.0.0.1:{port}"

@@ -325,7 +325,9 @@ def local_server_process(
         ],
         cwd=ROOT,
         # The benchmarks measure the service from one address, not its per-client rate limit.
-        env=os.environ | {"FLEXWING_RATE_LIMIT": "0"} | (env or {}),
+        env=os.environ
+        | {"FLEXWING_RATE_LIMIT": "0", "FLEXWING_WARMUP_TIMEOUT": "600"}
+        | (env or {}),
     )
     base = f"http://127.0.0.1:{port}"
     try:

@@ -99,7 +99,7 @@ from solver.solve import solve
 from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 from solver.trefftz import trefftz_drag
 from solver.trim import rigid_trim_alpha, trim, trimmed_divergence_limit
-from solver.warm import warm_up
+from solver.warm import is_compiled, warm_up
 
 __all__ = [
     "FINDING_CODES",
@@ -144,6 +144,7 @@ __all__ = [
     "InfeasibleDesign",
     "InitialGuess",
     "InvalidInput",
+    "is_compiled",
     "Layout",
     "Limits",
     "linear_divergence",

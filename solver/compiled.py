@@ -151,6 +151,12 @@ def _library_path(layout: Layout) -> Path:
     return cache_dir() / f"flexwing-{tag}.so"
 
 
+def library_on_disk(layout: Layout) -> bool:
+    """A compiled library of `layout` is in the disk cache (a process building this model
+    loads it; one serving it on the virtual machine swaps it in at its next lookup)."""
+    return compilation_enabled() and _library_path(layout).exists()
+
+
 T = TypeVar("T")
 
 

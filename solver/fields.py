@@ -16,7 +16,8 @@ import contextlib
 import dataclasses
 import hashlib
 import math
-from collections.abc import Iterator
+import types
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -63,6 +64,15 @@ class Limits:
         if self.lt is not None:
             inside &= values < self.lt
         return inside
+
+    def admits(self, value: float) -> bool:
+        """One number lies in the range (`contains` for a scalar, without numpy's costs)."""
+        return not (
+            (self.ge is not None and not value >= self.ge)
+            or (self.gt is not None and not value > self.gt)
+            or (self.le is not None and not value <= self.le)
+            or (self.lt is not None and not value < self.lt)
+        )
 
     def phrase(self) -> str:
         """'from 0.01 to 1000', 'strictly between -60 and 60', 'positive', '' (no limit)."""
@@ -167,13 +177,22 @@ def parameter(
     return dataclasses.field(metadata={"input": spec}, **field_kwargs)
 
 
-def specs(cls: type) -> dict[str, Spec]:
-    """Every input field of dataclass `cls` and its `Spec`, in declaration order."""
-    return {
-        field.name: field.metadata["input"]
-        for field in dataclasses.fields(cls)  # type: ignore[arg-type]
-        if isinstance(field.metadata.get("input"), Spec)
-    }
+_SPECS: dict[type, Mapping[str, Spec]] = {}
+
+
+def specs(cls: type) -> Mapping[str, Spec]:
+    """Every input field of dataclass `cls` and its `Spec`, in declaration order (read once
+    per class: a class's fields never change)."""
+    found = _SPECS.get(cls)
+    if found is None:
+        found = _SPECS[cls] = types.MappingProxyType(
+            {
+                field.name: field.metadata["input"]
+                for field in dataclasses.fields(cls)  # type: ignore[arg-type]
+                if isinstance(field.metadata.get("input"), Spec)
+            }
+        )
+    return found
 
 
 def spec_of(cls: type, name: str) -> Spec:
@@ -184,6 +203,9 @@ def spec_of(cls: type, name: str) -> Spec:
             if isinstance(spec, Spec):
                 return spec
     raise KeyError(f"{cls.__name__}.{name} is not an input field")
+
+
+_PLAIN_NUMBERS = {float, int}  # what JSON numbers become: checked by type at once
 
 
 def is_number(value: object) -> bool:
@@ -206,7 +228,7 @@ def number(path: str, value: object, spec: Spec) -> float:
     result = float(value)  # type: ignore[arg-type]
     if not math.isfinite(result):
         raise InvalidInput(path, "must be a finite number")
-    if not spec.limits.contains(np.asarray(result)):
+    if not spec.limits.admits(result):
         raise _out_of_range(path, spec)
     return result + 0.0  # -0.0 is 0.0
 
@@ -220,7 +242,9 @@ def stations(path: str, value: object, n: int | None, spec: Spec | None = None) 
         array = value.astype(float)
     elif is_number(value):
         array = np.asarray(float(value))  # type: ignore[arg-type]
-    elif isinstance(value, list | tuple) and all(is_number(v) for v in value):
+    elif isinstance(value, list | tuple) and (
+        set(map(type, value)) <= _PLAIN_NUMBERS or all(is_number(v) for v in value)
+    ):
         array = np.asarray(value, dtype=float)
     else:
         raise InvalidInput(path, "must be a number or a list of numbers")
@@ -246,7 +270,7 @@ def integer(path: str, value: object, spec: Spec) -> int:
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int | np.integer):
         raise InvalidInput(path, "must be a whole number")
-    if not spec.limits.contains(np.asarray(float(value))):
+    if not spec.limits.admits(float(value)):
         raise _out_of_range(path, spec)
     return int(value)
 
@@ -270,11 +294,13 @@ def digest(value: object) -> bytes:
     one number and the array it stands for are not the same value), recursing into
     dataclasses (every field, by name), sequences and mappings. What every cache keys by."""
     hasher = hashlib.blake2b(digest_size=16)
-    _feed(hasher, value)
+    _feed(hasher, value, {})
     return hasher.digest()
 
 
-def _feed(hasher: Any, value: object) -> None:
+def _feed(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
+    """Feed `value`'s canonical bytes; a dataclass met again within the same value (a wing's
+    one airfoil, repeated at every station) is fed as the digest it had the first time."""
     if value is None:
         hasher.update(b"N")
     elif isinstance(value, bool | np.bool_):
@@ -285,18 +311,23 @@ def _feed(hasher: Any, value: object) -> None:
     elif isinstance(value, str):
         hasher.update(b"S" + str(len(value)).encode() + b":" + value.encode())
     elif dataclasses.is_dataclass(value) and not isinstance(value, type):
-        hasher.update(b"D" + type(value).__name__.encode())
-        for field in dataclasses.fields(value):
-            hasher.update(b"." + field.name.encode())
-            _feed(hasher, getattr(value, field.name))
+        known = seen.get(id(value))
+        if known is None:
+            inner = hashlib.blake2b(digest_size=16)
+            inner.update(type(value).__name__.encode())
+            for field in dataclasses.fields(value):
+                inner.update(b"." + field.name.encode())
+                _feed(inner, getattr(value, field.name), seen)
+            known = seen[id(value)] = inner.digest()
+        hasher.update(b"D" + known)
     elif isinstance(value, list | tuple):
         hasher.update(b"L" + str(len(value)).encode())
         for item in value:
-            _feed(hasher, item)
+            _feed(hasher, item, seen)
     elif isinstance(value, dict):
         hasher.update(b"M" + str(len(value)).encode())
         for key in sorted(value):
-            _feed(hasher, key)
-            _feed(hasher, value[key])
+            _feed(hasher, key, seen)
+            _feed(hasher, value[key], seen)
     else:
         raise TypeError(f"no canonical identity for {type(value).__name__}")

@@ -300,8 +300,7 @@ class LocalWorkers:
         current = [x for x in self._workers if x.generation == self._generation]
         if w.generation != self._generation or not all(x.report for x in current):
             return
-        compiled = all(all(x.report.compiled.values()) for x in current if x.report)
-        self._detail = "ready" + ("" if compiled else " (some mesh sizes on CasADi's VM)")
+        self._detail = "ready"
         self._started = True
         self._ready.set()
         self.metrics.ready.set(1)

@@ -1,13 +1,14 @@
 """What runs inside a worker process: one function for every operation.
 
-A task is a solver operation input (`solver.SolveInput`, `SweepInput`, `OptimizeInput`: frozen
-dataclasses of numpy arrays and floats, validated before they left the service); `run` answers
-it with the JSON-ready payload of its result (`app.schemas.payload`), or with the solver's own
-typed error when there is no answer (`solver.SolverError`, or `InvalidInput` for an input the
-service's validation let through: a defect of that validation, still answered as that input's
-422). Solver errors pickle, so they cross the process boundary as they are; no CasADi object
-ever does: each process builds (or loads from the disk cache) the compiled functions of a mesh
-size once and keeps them in the solver's cache.
+A task is a solver operation input (`solver.SolveInput`, `SweepInput`, `OptimizeInput`,
+`FlutterInput`: frozen dataclasses of numpy arrays and floats, validated before they left the
+service); `run` answers it with its result's response body, serialised here once
+(`app.schemas.Answer`), or with the solver's own typed error when there is no answer
+(`solver.SolverError`, or `InvalidInput` for an input the service's validation let through: a
+defect of that validation, still answered as that input's 422). Solver errors pickle, so they
+cross the process boundary as they are; no CasADi object ever does: each process builds (or
+loads from the disk cache) the compiled functions of a mesh size once and keeps them in the
+solver's cache.
 """
 
 from __future__ import annotations
@@ -17,20 +18,20 @@ import os
 from dataclasses import dataclass
 from typing import Any
 
-from app.schemas.responses import payload
+from app.schemas.responses import Answer
 from solver import InvalidInput, Progress, SolverError, warm_up
 
-__all__ = ["Outcome", "WarmReport", "run", "warm"]
+__all__ = ["Outcome", "WarmReport", "run", "run_each", "warm"]
 
 log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
 class Outcome:
-    """A task's answer: the payload of its result (a response body as a dict), or the error
-    that says why there is none."""
+    """A task's answer: its result's response body, or the error that says why there is
+    none."""
 
-    payload: dict[str, Any] | None
+    answer: Answer | None
     error: SolverError | InvalidInput | None = None
 
 
@@ -62,4 +63,15 @@ def run(task: Any, progress: Progress | None = None) -> Outcome:
         result = task.run(progress)
     except (SolverError, InvalidInput) as error:
         return Outcome(None, error)
-    return Outcome(payload(result))
+    return Outcome(Answer.of(result))
+
+
+def run_each(tasks: tuple[Any, ...], progress: Progress | None = None) -> list[Outcome]:
+    """The answers to many operation inputs (a batch's chunk), in order: one round trip for
+    all of them; `progress(done, total)` after each."""
+    outcomes = []
+    for done, task in enumerate(tasks, start=1):
+        outcomes.append(run(task))
+        if progress is not None:
+            progress(done, len(tasks))
+    return outcomes

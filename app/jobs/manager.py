@@ -231,13 +231,13 @@ class JobManager:
         return job
 
     def adopt(
-        self, name: str, answer: asyncio.Future[dict[str, Any]], total: int, *, principal: str
+        self, name: str, answer: asyncio.Future[bytes], total: int, *, principal: str
     ) -> LiveJob:
         """A synchronous request past its wait, as a running job of `principal`: `answer` (its
         service call, already running) finishes it, recorded as the job's result or problem.
         It never waits in the queue: it runs already."""
         operation = self.operations[name]
-        assert operation.result is not None, f"{name} answers no payload"
+        assert operation.result is not None, f"{name} answers no body"
         started = time.time()
         job = LiveJob(
             store.new_job_id(),
@@ -259,11 +259,11 @@ class JobManager:
     async def _finish_adopted(
         self,
         job: LiveJob,
-        answer: asyncio.Future[dict[str, Any]],
-        result: Callable[[dict[str, Any]], str],
+        answer: asyncio.Future[bytes],
+        result: Callable[[bytes], str],
     ) -> None:
         try:
-            payload = await answer
+            body = await answer
         except asyncio.CancelledError:
             answer.cancel()
             if job.cancel_requested:
@@ -277,7 +277,7 @@ class JobManager:
             internal = Problem("internal-error", f"unexpected {type(error).__name__}")
             self._finish(job, "failed", problem=problem_body(internal))
         else:
-            self._finish(job, "succeeded", result=result(payload))
+            self._finish(job, "succeeded", result=result(body))
 
     # --------------------------------------------------------------------------- running
 

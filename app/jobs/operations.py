@@ -4,8 +4,7 @@ Adding one (as ``optimize`` below) is a few lines, before
 `app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
 
     async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
-        payload = await context.service.answer("optimize", request)
-        return OptimizeResponse.model_validate(payload).model_dump_json()
+        return (await context.service.answer("optimize", request)).decode()
 
     register(Operation(
         name="optimize", summary="one optimization (POST /optimize)",
@@ -29,13 +28,9 @@ from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem, problem_body
 from app.schemas import (
     FlutterRequest,
-    FlutterResponse,
     OptimizeRequest,
-    OptimizeResponse,
     SolveRequest,
-    SolveResponse,
     SweepRequest,
-    SweepResponse,
 )
 from app.schemas.limits import station_and_point_errors
 from app.service import Service, task_of
@@ -48,6 +43,11 @@ T = TypeVar("T")
 # Problems that mean "not now" for a batch item: it waits and tries again instead of failing.
 _TRANSIENT = frozenset({"overloaded", "not-ready"})
 _MAX_BACKOFF = 1.0  # [s]
+# Batch items per worker task: at most _CHUNK, about _CHUNK_SECONDS of work. One round trip (one
+# Dask task) for 16 solves of a few ms costs a sixteenth of the per-task overhead, and a chunk's
+# lines still reach the store every ~50 ms.
+_CHUNK = 16
+_CHUNK_SECONDS = 0.05
 
 
 class JobContext(Protocol):
@@ -79,8 +79,8 @@ class Operation:
     `units`: its progress total for a request; `check`: settings-dependent validation at
     submission (raises an invalid-input Problem with paths relative to the request); `run`: does
     the work and returns the result as JSON text (None when it is assembled from batch items);
-    `result`: an answer's payload as that JSON text (what a synchronous request past its wait
-    becomes as a job records, `JobManager.adopt`).
+    `result`: an answer's response body as that JSON text (what a synchronous request past its
+    wait becomes as a job records, `JobManager.adopt`).
     """
 
     name: str
@@ -91,7 +91,7 @@ class Operation:
     check: Callable[[Any, Settings], None]
     run: Callable[[JobContext, Any], Awaitable[str | None]]
     has_items: bool = False
-    result: Callable[[dict[str, Any]], str] | None = None
+    result: Callable[[bytes], str] | None = None
 
 
 OPERATIONS: dict[str, Operation] = {}
@@ -118,18 +118,17 @@ async def patiently(call: Callable[[], Awaitable[T]]) -> T:
         backoff = min(2 * backoff, _MAX_BACKOFF)
 
 
-def _json(model: type[BaseModel]) -> Callable[[dict[str, Any]], str]:
-    """An answer's payload as the JSON text of `model`, the endpoint's response model."""
-    return lambda payload: model.model_validate(payload).model_dump_json()
+def _text(body: bytes) -> str:
+    """An answer's response body (JSON, UTF-8) as the job's result text."""
+    return body.decode()
 
 
-def _answering(name: str, model: type[BaseModel]) -> Callable[[JobContext, Any], Awaitable[str]]:
+def _answering(name: str) -> Callable[[JobContext, Any], Awaitable[str]]:
     """A job that answers what the endpoint `name` answers."""
 
     async def run(context: JobContext, request: Any) -> str:
         answer = context.service.answer
-        payload = await patiently(lambda: answer(name, request, context.progress))
-        return _json(model)(payload)
+        return _text(await patiently(lambda: answer(name, request, context.progress)))
 
     return run
 
@@ -163,27 +162,95 @@ def _check_batch(request: BatchRequest, settings: Settings) -> None:
         raise Problem.invalid(errors)
 
 
+def _ok_line(index: int, body: bytes) -> tuple[bool, str]:
+    return True, f'{{"index": {index}, "status": "ok", "result": {_text(body)}}}'
+
+
+def _problem_line(index: int, problem: Problem) -> tuple[bool, str]:
+    body = json.dumps(problem_body(problem), allow_nan=False)
+    return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
+
+
 async def answer_item(context: JobContext, index: int, request: SolveRequest) -> tuple[bool, str]:
     """(ok, NDJSON line) of one batch item: its /solve response or its problem."""
     try:
-        payload = await patiently(lambda: context.service.answer("solve", request))
+        result = await patiently(lambda: context.service.answer("solve", request))
     except Problem as problem:
-        body = json.dumps(problem_body(problem), allow_nan=False)
-        return False, f'{{"index": {index}, "status": "problem", "problem": {body}}}'
-    result = SolveResponse.model_validate(payload).model_dump_json()
-    return True, f'{{"index": {index}, "status": "ok", "result": {result}}}'
+        return _problem_line(index, problem)
+    return _ok_line(index, result)
+
+
+async def answer_chunk(
+    context: JobContext, indices: range, items: list[SolveRequest]
+) -> list[tuple[bool, str]]:
+    """(ok, NDJSON line) of consecutive batch items, answered as one worker task; a chunk the
+    pool lost as a whole (its worker died twice, its budget spent) is asked again one item at
+    a time, so an item that cannot be answered costs only its own line."""
+    service = context.service
+    lines: dict[int, tuple[bool, str]] = {}
+    tasks: dict[int, Any] = {}
+    for index in indices:
+        try:
+            tasks[index] = service.task(items[index])
+        except Problem as problem:
+            lines[index] = _problem_line(index, problem)
+    if tasks:
+        chunk = list(tasks.values())
+        try:
+            answers = await patiently(lambda: service.run_each("solve", chunk))
+        except Problem:
+            for index in tasks:
+                lines[index] = await answer_item(context, index, items[index])
+        else:
+            for index, answer in zip(tasks, answers, strict=True):
+                if isinstance(answer, Problem):
+                    lines[index] = _problem_line(index, answer)
+                else:
+                    lines[index] = _ok_line(index, answer)
+    return [lines[index] for index in indices]
+
+
+class _Chunks:
+    """Consecutive batch items for the lanes to take, in chunks sized to take about
+    `_CHUNK_SECONDS` each (at most `_CHUNK` items): many fast solves share one worker round
+    trip, slow ones still stream one by one, and the last chunks shrink so no lane is left
+    with a long tail while the others idle."""
+
+    def __init__(self, items: int, lanes: int) -> None:
+        self.items = items
+        self.lanes = max(1, lanes)
+        self.next = 0
+        self.per_item: float | None = None  # [s] an item's share of its chunk, smoothed
+
+    def take(self) -> range | None:
+        remaining = self.items - self.next
+        if remaining <= 0:
+            return None
+        size = 1 if self.per_item is None else int(_CHUNK_SECONDS / max(self.per_item, 1e-6))
+        size = max(1, min(size, _CHUNK, -(-remaining // self.lanes)))
+        start, self.next = self.next, self.next + size
+        return range(start, start + size)
+
+    def took(self, size: int, seconds: float) -> None:
+        share = seconds / size
+        self.per_item = share if self.per_item is None else 0.7 * self.per_item + 0.3 * share
 
 
 async def _run_batch(context: JobContext, request: BatchRequest) -> None:
-    """Every item through the service, `context.lanes` at a time (enough to keep every worker
-    busy); each answer is recorded as it comes."""
+    """Every item through the service in chunks of consecutive items (one worker task each),
+    `context.lanes` chunks at a time (enough to keep every worker busy); each chunk's lines are
+    recorded as it is answered."""
     items = request.items
-    indices = iter(range(len(items)))
+    chunks = _Chunks(len(items), context.lanes)
+    loop = asyncio.get_running_loop()
 
     async def lane() -> None:
-        for index in indices:  # shared: each lane takes the next unanswered item
-            ok, line = await answer_item(context, index, items[index])
-            context.item_answered(index, ok, line)
+        while (indices := chunks.take()) is not None:  # shared: the next unanswered chunk
+            started = loop.time()
+            lines = await answer_chunk(context, indices, items)
+            chunks.took(len(indices), loop.time() - started)
+            for index, (ok, line) in zip(indices, lines, strict=True):
+                context.item_answered(index, ok, line)
 
     await asyncio.gather(*(lane() for _ in range(min(context.lanes, len(items)))))
     return None
@@ -197,8 +264,8 @@ register(
         request_description="A POST /solve body.",
         units=lambda request: 1,
         check=_check,
-        run=_answering("solve", SolveResponse),
-        result=_json(SolveResponse),
+        run=_answering("solve"),
+        result=_text,
     )
 )
 register(
@@ -209,8 +276,8 @@ register(
         request_description="A POST /sweep body.",
         units=_sweep_points,
         check=_check,
-        run=_answering("sweep", SweepResponse),
-        result=_json(SweepResponse),
+        run=_answering("sweep"),
+        result=_text,
     )
 )
 register(
@@ -221,8 +288,8 @@ register(
         request_description="A POST /optimize body.",
         units=lambda request: 1,
         check=_check,
-        run=_answering("optimize", OptimizeResponse),
-        result=_json(OptimizeResponse),
+        run=_answering("optimize"),
+        result=_text,
     )
 )
 register(
@@ -233,8 +300,8 @@ register(
         request_description="A POST /flutter body.",
         units=_sweep_points,
         check=_check,
-        run=_answering("flutter", FlutterResponse),
-        result=_json(FlutterResponse),
+        run=_answering("flutter"),
+        result=_text,
     )
 )
 register(

@@ -10,6 +10,7 @@ from prometheus_client import CONTENT_TYPE_LATEST, generate_latest
 
 from app.problems import PROBLEM_TYPES, Problem
 from app.schemas import HealthResponse, ReadyResponse
+from solver import is_compiled
 
 __all__ = ["router"]
 
@@ -29,14 +30,23 @@ async def healthz() -> Any:
     responses={503: {"model": ReadyResponse, "description": "Workers are not warm yet."}},
 )
 async def readyz(request: Request) -> Any:
-    """Ready once every worker has compiled or loaded the solver for the warm mesh sizes."""
+    """Ready once every worker has built (compiled, loaded, or on CasADi's virtual machine
+    while its library compiles) the solver for the warm mesh sizes."""
     pool = request.app.state.pool
+    compiled = [n for n in pool.warm_stations if is_compiled(n)]
+    detail = pool.detail
+    on_the_vm = [str(n) for n in pool.warm_stations if n not in compiled]
+    if pool.ready and on_the_vm:
+        detail += (
+            f"; N = {', '.join(on_the_vm)} on CasADi's virtual machine (no compiled library yet)"
+        )
     body = ReadyResponse(
         ready=pool.ready,
         workers=pool.settings.workers,
         pids=pool.pids(),
         warm_stations=list(pool.warm_stations),
-        detail=pool.detail,
+        compiled=compiled,
+        detail=detail,
         cluster=pool.cluster(),
     )
     return JSONResponse(body.model_dump(), status_code=200 if pool.ready else 503)

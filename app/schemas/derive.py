@@ -119,6 +119,8 @@ def to_solver(value: Any) -> Any:
     if isinstance(value, RequestModel):
         return value.to_solver()
     if isinstance(value, list):
+        if not any(isinstance(item, RequestModel | list) for item in value):
+            return tuple(value)  # numbers and names: nothing inside to name an error from
         items = []
         for index, item in enumerate(value):
             with solver.fields.prefixed(f"[{index}]"):

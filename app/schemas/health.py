@@ -28,6 +28,14 @@ class ReadyResponse(BaseModel):
     workers: int = Field(description="[-] configured worker count.")
     pids: list[int] = Field(description="Process ids of the local workers (empty if remote).")
     warm_stations: list[int] = Field(description="Mesh sizes N warmed in every worker.")
+    compiled: list[int] = Field(
+        default_factory=list,
+        description=(
+            "The warm mesh sizes N whose compiled library is on the service's disk cache: "
+            "served by compiled code (the others run on CasADi's virtual machine, with the same "
+            "answers, until their library is compiled and swapped in)."
+        ),
+    )
     detail: str = Field(description="What the pool is doing.")
     cluster: list[ClusterWorker] | None = Field(
         default=None,

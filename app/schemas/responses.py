@@ -6,6 +6,11 @@ solver results into JSON-ready dicts of the same shape (`payload`), so a field t
 appears in the API, with its unit, and none can be dropped or invented by a copy that drifted.
 The only fields the API adds are listed in `API_ONLY_FIELDS` (what the service itself knows, such
 as whether the answer came from its cache).
+
+An answer crosses the service as `Answer`: its JSON body, serialised once in the worker that
+computed it (pydantic-core's serialiser, compact), and sent as it is. The response models
+describe that body exactly (tests/app/schemas/test_responses.py validates every operation's
+answers against them); they are not re-applied field by field on the way out.
 """
 
 from __future__ import annotations
@@ -14,15 +19,18 @@ import dataclasses
 import math
 import types
 import typing
+from dataclasses import dataclass
 from typing import Any, Literal, Union
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, create_model
+from pydantic_core import to_json
 
 import solver
 
 __all__ = [
     "API_ONLY_FIELDS",
+    "Answer",
     "MODEL_NAMES",
     "FlutterResponse",
     "OptimizeResponse",
@@ -112,10 +120,14 @@ def response_model(cls: type) -> type[BaseModel]:
 
 
 def payload(result: Any) -> Any:
-    """A solver result as JSON-ready data: dataclasses as dicts of their API fields, arrays as
-    lists, non-finite numbers as None (JSON has no NaN or infinity)."""
+    """A solver result as JSON-ready data: dataclasses as dicts of their API fields (and the
+    service's own fields at their defaults), arrays as lists, non-finite numbers as None (JSON
+    has no NaN or infinity)."""
     if dataclasses.is_dataclass(result) and not isinstance(result, type):
-        return {f.name: payload(getattr(result, f.name)) for f in api_fields(type(result))}
+        data = {f.name: payload(getattr(result, f.name)) for f in api_fields(type(result))}
+        for name, (_, default, _) in API_ONLY_FIELDS.get(type(result).__name__, {}).items():
+            data[name] = default
+        return data
     if isinstance(result, np.ndarray):
         if np.all(np.isfinite(result)):
             return result.tolist()
@@ -130,6 +142,41 @@ def payload(result: Any) -> Any:
     if isinstance(result, np.bool_):
         return bool(result)
     return result
+
+
+@dataclass(frozen=True)
+class Answer:
+    """A solver result as its response body, serialised once.
+
+    `head`: the body's JSON object without its `solver` block; `info`: that block (None for a
+    result without one). A fresh and a cached answer differ only there (`body`), so the cache
+    keeps one copy and the service never parses or re-serialises a body.
+    """
+
+    head: bytes
+    info: dict[str, Any] | None = None
+
+    @classmethod
+    def of(cls, result: Any) -> Answer:
+        """The answer of a solver result (a dataclass of `solver`)."""
+        data = payload(result)
+        info = data.pop("solver", None)
+        return cls(to_json(data), info)
+
+    def body(self, cached: bool = False) -> bytes:
+        """The JSON response body; `cached`: as answered from the result cache (no time spent
+        solving)."""
+        if self.info is None:
+            return self.head
+        info = self.info | {"cached": True, "seconds": 0.0} if cached else self.info
+        # The block goes last: `head` is a JSON object, so it ends with "}".
+        separator = b"," if len(self.head) > 2 else b""
+        return self.head[:-1] + separator + b'"solver":' + to_json(info) + b"}"
+
+    @property
+    def nbytes(self) -> int:
+        """[bytes] about what it holds in memory."""
+        return len(self.head) + 64 * len(self.info or ()) + 200
 
 
 # Build the two top-level models at import: every nested one follows.

@@ -101,6 +101,8 @@ OPERATIONS = [
     # Design (issue 12): fewer cases; a generated request that is a physical wing runs an
     # optimisation.
     ("POST", "/optimize"),
+    # Flutter: as few cases as a design; a physical wing with a mass model runs an analysis.
+    ("POST", "/flutter"),
     ("GET", "/healthz"),
     ("GET", "/readyz"),
     # Jobs (issue 13): fewer cases; ids the fuzzer makes up are never a job's (404).
@@ -114,7 +116,9 @@ OPERATIONS = [
 POSITIVE, NEGATIVE = GenerationMode.POSITIVE, GenerationMode.NEGATIVE
 # Parameterless GET operations have no invalid request to generate.
 RUNS = [(m, p, POSITIVE, s) for m, p in OPERATIONS for s in SEEDS] + [
-    ("POST", p, NEGATIVE, s) for p in ("/solve", "/sweep", "/optimize", "/jobs") for s in SEEDS
+    ("POST", p, NEGATIVE, s)
+    for p in ("/solve", "/sweep", "/optimize", "/flutter", "/jobs")
+    for s in SEEDS
 ]
 # Per seed and mode.
 CASES_PER_JOB_OPERATION = {"POST /jobs": 50, "GET /jobs": 15}
@@ -134,7 +138,7 @@ def _examples(method: str, path: str) -> int:
     """Per seed and mode; parameterless GET operations have a handful of distinct requests."""
     if path.startswith("/jobs"):
         return fuzz_examples(CASES_PER_JOB_OPERATION.get(f"{method} {path}", 5))
-    if path == "/optimize":
+    if path in ("/optimize", "/flutter"):
         return fuzz_examples(CASES_PER_DESIGN_OPERATION)
     return fuzz_examples(CASES_PER_BODY_OPERATION // 4 if method == "POST" else 5)
 

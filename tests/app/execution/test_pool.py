@@ -18,7 +18,7 @@ from tests.app import pool_jobs
 # Run with the live-server tests, after the fast loop: real worker processes.
 pytestmark = pytest.mark.server
 
-APP = Path(__file__).resolve().parents[2] / "app"
+APP = Path(__file__).resolve().parents[3] / "app"
 # What app/pool.py used to read from ProcessPoolExecutor; none of it is public.
 PRIVATE_POOL_ATTRIBUTES = {
     "_processes",

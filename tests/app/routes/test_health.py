@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import importlib
 import json
+import shutil
 import subprocess
 import sys
+import time
+from collections.abc import Callable
 from pathlib import Path
 
 import httpx
@@ -57,7 +60,7 @@ def test_committed_openapi_is_current() -> None:
 def test_operation_ids_are_clean() -> None:
     schema = json.loads(OPENAPI_PATH.read_text())
     ids = {op["operationId"] for path in schema["paths"].values() for op in path.values()}
-    assert ids == {"solve", "sweep", "optimize", "healthz", "readyz"} | {
+    assert ids == {"solve", "sweep", "optimize", "flutter", "healthz", "readyz"} | {
         "submit_job",
         "list_jobs",
         "get_job",
@@ -129,3 +132,61 @@ def test_openapi_generator_runs_as_a_script(tmp_path: Path) -> None:
         [sys.executable, "openapi/generate.py", "--check"], cwd=ROOT, capture_output=True
     )
     assert result.returncode == 0, result.stderr
+
+
+_GATED_COMPILER = """#!/bin/sh
+# A C compiler whose library builds wait for the test's go-ahead (flag probes pass at once).
+case "$*" in *-shared*) while [ ! -e "$GATE" ]; do sleep 0.05; done;; esac
+exec cc "$@"
+"""
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler: nothing compiles")
+def test_a_fresh_machine_is_ready_on_the_virtual_machine_and_swaps_the_library_in(
+    make_server: Callable[..., Server], tmp_path: Path
+) -> None:
+    """Without a compiled cache the service is ready at once and answers on CasADi's virtual
+    machine while the warm mesh size compiles; once the library is there it serves compiled
+    code, with the same numbers to the bit."""
+    compiler, gate = tmp_path / "cc", tmp_path / "go"
+    compiler.write_text(_GATED_COMPILER)
+    compiler.chmod(0o755)
+    n = 5
+    server = make_server(
+        "fresh_machine",
+        FLEXWING_COMPILE="1",
+        FLEXWING_CC=str(compiler),
+        FLEXWING_CACHE_DIR=str(tmp_path / "cache"),
+        FLEXWING_WARM_STATIONS=f"[{n}]",
+        FLEXWING_RESULT_CACHE_BYTES="0",  # the same request is solved again, not remembered
+        GATE=str(gate),
+    )
+    y = [i / (n - 1) * 5 for i in range(n)]
+    body = {
+        "wing": {
+            "y": y,
+            "chord": 1.0,
+            "elastic_axis": 0.4,
+            "bending_stiffness": 2e4,
+            "torsional_stiffness": 1e3,
+        },
+        "flight": {"velocity": 10.0, "alpha": 5.0},
+    }
+    with server.client() as client:
+        ready = client.get("/readyz").json()
+        assert ready["ready"] is True and ready["compiled"] == []  # its compile is held back
+        on_the_vm = client.post("/solve", json=body)
+        assert on_the_vm.status_code == 200
+        gate.touch()
+        while client.get("/readyz").json()["compiled"] != [n]:
+            time.sleep(0.1)  # the hang guard bounds a compile that never ends
+        compiled = client.post("/solve", json=body)
+    assert compiled.status_code == 200
+    timing = {"seconds"}
+    vm, cc = on_the_vm.json(), compiled.json()
+    assert {k: v for k, v in vm.items() if k != "solver"} == {
+        k: v for k, v in cc.items() if k != "solver"
+    }
+    assert {k: v for k, v in vm["solver"].items() if k not in timing} == {
+        k: v for k, v in cc["solver"].items() if k not in timing
+    }
