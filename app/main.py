@@ -7,12 +7,14 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
+from collections.abc import AsyncIterator, Awaitable, Callable, Iterator, Mapping
 from contextlib import asynccontextmanager
 from typing import Any
 
 from fastapi import Depends, FastAPI
+from fastapi.encoders import jsonable_encoder
 from fastapi.openapi.utils import get_openapi
+from fastapi.routing import APIRoute
 from fastapi.staticfiles import StaticFiles
 
 from app import __version__, security
@@ -115,6 +117,32 @@ def _apply_limits(node: Any, settings: Settings) -> None:
             _apply_limits(child, settings)
 
 
+def _api_routes(routes: list[Any]) -> Iterator[APIRoute]:
+    """Every API route, those of included routers too."""
+    for route in routes:
+        if isinstance(route, APIRoute):
+            yield route
+        included = getattr(route, "original_router", None)  # an include_router wrapper
+        if included is not None:
+            yield from _api_routes(included.routes)
+
+
+def _restore_examples(schema: dict[str, Any], app: FastAPI) -> None:
+    """Request body examples exactly as written: FastAPI writes the document without nulls,
+    which would change an example's meaning (a null `control_points` is every station)."""
+    for route in _api_routes(app.routes):
+        examples = getattr(
+            route.body_field.field_info if route.body_field else None, "openapi_examples", None
+        )
+        if not examples:
+            continue
+        for method in route.methods or ():
+            operation = schema["paths"].get(route.path_format, {}).get(method.lower())
+            content = (operation or {}).get("requestBody", {}).get("content", {})
+            if "application/json" in content:
+                content["application/json"]["examples"] = jsonable_encoder(examples)
+
+
 def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
     """The OpenAPI document, with error responses as application/problem+json and the
     configured limits."""
@@ -142,6 +170,7 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
                     ref = content.get("application/json", {}).get("schema", {}).get("$ref", "")
                     if ref.endswith("/ProblemDetails"):
                         content[PROBLEM_MEDIA_TYPE] = content.pop("application/json")
+        _restore_examples(schema, app)
         _apply_limits(schema, settings)
         security.document(schema, settings)
         app.openapi_schema = schema

@@ -254,7 +254,21 @@ class JobManager:
         self._count(None, "running")
         self.metrics.jobs_submitted.labels(name).inc()
         job.task = asyncio.create_task(self._finish_adopted(job, answer, operation.result))
+        job.task.add_done_callback(lambda task: self._cancelled_before_it_began(job, answer, task))
         return job
+
+    def _cancelled_before_it_began(
+        self, job: LiveJob, answer: asyncio.Future[bytes], task: asyncio.Task[None]
+    ) -> None:
+        """An adopted job's task cancelled before its first step never reached
+        `_finish_adopted`: end the job and its call here."""
+        if not task.cancelled() or job.status in FINISHED_STATES:
+            return
+        answer.cancel()
+        if job.cancel_requested:
+            self._finish(job, "cancelled")
+        else:
+            self._finish(job, "failed", problem=self._interrupted(job))
 
     async def _finish_adopted(
         self,

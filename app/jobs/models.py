@@ -63,7 +63,8 @@ class BatchRequest(Request):
             "[-] 1 to FLEXWING_MAX_BATCH_ITEMS (default and at most 10,000) /solve request "
             "bodies. One whose solve fails (no equilibrium, not converged, an invalid wing that "
             "the schema cannot tell, a lost worker) is answered with its problem in place."
-        )
+        ),
+        json_schema_extra={"x-flexwing-limit": "max_batch_items"},
     )
 
 

@@ -43,6 +43,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
+from app.problems import Problem
+
 __all__ = ["JOB_ID_BYTES", "JobRow", "JobStore", "OwnerLock", "new_job_id"]
 
 log = logging.getLogger(__name__)
@@ -164,7 +166,11 @@ class JobStore:
         self._tasks.put((operation, args, None))
 
     async def read(self, operation: Callable[..., T], *args: Any) -> T:
-        """Run `operation(connection, *args)` after everything queued before it."""
+        """Run `operation(connection, *args)` after everything queued before it; 503
+        not-ready while the database is not open (an app without its lifespan, a closed one),
+        where a read would wait for ever."""
+        if self._thread is None:
+            raise Problem("not-ready", "the jobs database is not open")
         future: concurrent.futures.Future[T] = concurrent.futures.Future()
         self._tasks.put((operation, args, future))
         return await asyncio.wrap_future(future)

@@ -1,6 +1,7 @@
 """Design (`solver.optimize`): the study's sketch made well-posed, against AeroSandbox solving the
-regularised sketch (tests/reference/data/ref_design_study.json, CONVENTIONS.md item 16), exact
-gradients, and the physics of the optimum."""
+regularised sketch (tests/reference/data/ref_design_study.json, CONVENTIONS.md item 16), and the
+physics of the optimum (its exact gradients: tests/solver/test_design_space.py; the Trefftz-plane
+drag: tests/solver/test_trefftz.py)."""
 
 from __future__ import annotations
 
@@ -11,8 +12,6 @@ import numpy as np
 import pytest
 
 import solver
-from solver.design_space import DesignSpace
-from solver.trefftz import trefftz_matrix
 from tests.reference import extended_references
 from tests.study import study_wing
 
@@ -70,22 +69,10 @@ def test_the_rigid_optimum_matches_aerosandbox():
     assert np.max(np.abs(rigid.jig_twist - theirs["jig_twist_deg"])) <= 1e-4
 
 
-def test_the_trefftz_drag_of_an_elliptic_loading_is_the_classical_minimum():
-    """D = L^2 / (q pi b^2) for elliptic circulation: the far field's planar wake, converging
-    as the stations refine (midpoint downwash: 2 % low at 31 stations, 0.1 % at 481)."""
-    for stations, tolerance in ((31, 0.025), (481, 0.002)):
-        y = 5.0 * np.sin(np.linspace(0, np.pi / 2, stations))
-        middle = (y[1:] + y[:-1]) / 2
-        circulation = np.sqrt(1 - (middle / 5.0) ** 2)
-        drag = circulation @ trefftz_matrix(y) @ circulation  # per unit q
-        lift = 4 * np.sum(circulation * np.diff(y))  # per unit q, both halves
-        assert drag == pytest.approx(lift**2 / (np.pi * 10.0**2), rel=tolerance)
-
-
 def test_the_rigid_optimum_is_nearly_elliptic():
     rigid = _study_optimum().rigid
     # Near field on this mesh reads ~1.03 (the issue's figure); the far field nearer 1 (the
-    # residual 2 % is the midpoint downwash of 30 stations, see the test above).
+    # residual 2 % is the midpoint downwash of 30 stations, see tests/solver/test_trefftz.py).
     assert rigid.span_efficiency == pytest.approx(1.03, abs=0.01)
     assert abs(rigid.trefftz_span_efficiency - 1) < abs(rigid.span_efficiency - 1)
     assert rigid.trefftz_span_efficiency == pytest.approx(1.0, abs=0.025)
@@ -118,30 +105,6 @@ def test_every_constraint_is_reported_with_its_activity():
     assert set(by_name) == {"lift", "jig_twist", "stability_margin"}
     assert by_name["lift"].active and by_name["lift"].value == pytest.approx(300.0, rel=1e-9)
     assert not by_name["stability_margin"].active
-
-
-@pytest.mark.parametrize("rigid", [False, True], ids=["flexible", "rigid"])
-def test_reduced_gradients_are_exact(rigid: bool):
-    """Every function IPOPT sees, against central differences (step 1e-6: error ~1e-8)."""
-    wing = _spar_wing()
-    problem = solver.DesignProblem(
-        solver.DesignCondition(14.0, lift=600.0),
-        design=solver.Design(wall_thickness=solver.WallDesign()),
-        smoothness_weight=0.01,
-        constraints=solver.DesignConstraints(max_tip_heave=1.0),
-    )
-    space = DesignSpace(wing, problem, solver.SolverOptions(), rigid=rigid)
-    v = np.concatenate([np.linspace(3.0, 1.0, 6), np.full(30, 0.002)])
-    direction = np.random.default_rng(7).normal(size=v.size)
-    direction[6:] *= 1e-4  # walls in metres
-    step = 1e-6
-    point = space.at(v)
-    plus, minus = space._evaluate(v + step * direction), space._evaluate(v - step * direction)
-    for name, gradient in point.gradients.items():
-        finite = (plus.values[name] - minus.values[name]) / (2 * step)
-        exact = gradient @ direction
-        scale = max(np.max(np.abs(exact)), 1e-9)
-        assert np.max(np.abs(finite - exact)) <= 1e-5 * scale, name
 
 
 def test_the_stress_constraint_binds_at_the_root_and_a_stronger_material_saves_mass():

@@ -9,7 +9,11 @@ import sqlite3
 import threading
 from pathlib import Path
 
+import httpx
+import pytest
+
 from app.jobs import store
+from app.problems import Problem
 
 WAIT = 10.0  # [s] guards a hang only; nothing here is timed
 
@@ -59,3 +63,16 @@ def test_a_read_answers_only_after_the_writes_before_it_are_committed(tmp_path: 
         await jobs.close()
 
     asyncio.run(scenario())
+
+
+def test_a_read_of_a_database_that_is_not_open_is_refused_not_left_waiting(tmp_path: Path):
+    """An app without its lifespan (or after it) has no writer thread: a read would wait for
+    ever; it is 503 not-ready instead."""
+    closed = store.JobStore(tmp_path / "jobs.sqlite3")
+    with pytest.raises(Problem) as refused:
+        asyncio.run(asyncio.wait_for(closed.read(store.count_by_status, 0.0), 10))
+    assert refused.value.type.slug == "not-ready"
+
+
+def test_a_jobs_request_to_an_app_without_its_lifespan_is_503(in_process: httpx.Client):
+    assert in_process.get("/jobs", timeout=10).status_code == 503
