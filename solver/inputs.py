@@ -16,6 +16,7 @@ from typing import Any, Literal
 import numpy as np
 
 from solver.airfoil import CamberLine, camber_line
+from solver.controls import ControlSurface, symmetric_camber, validate_surfaces
 from solver.errors import InvalidInput
 from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 
@@ -113,6 +114,9 @@ class Wing:
         cl_max: (N,) [-] the sections' maximum lift coefficient, > 0, or None: then
             `ValidityLimits.cl_max` applies. Says when a section stalls (`solver.validity`);
             the equilibrium does not depend on it (an inviscid lattice never stalls).
+        control_surfaces: the flaps and ailerons (`solver.controls`); the flaps' deflected
+            camber is part of `camber_at`, the ailerons' acts in the antisymmetric problem
+            (`solver.roll`).
     """
 
     y: np.ndarray
@@ -125,6 +129,7 @@ class Wing:
     camber: tuple[CamberLine, ...] = ()
     spar: TubeSpar | None = None
     cl_max: np.ndarray | None = None
+    control_surfaces: tuple[ControlSurface, ...] = ()
 
     @classmethod
     def create(
@@ -140,12 +145,14 @@ class Wing:
         airfoil: object = None,
         spar: SparDesign | None = None,
         cl_max: object = None,
+        control_surfaces: object = None,
     ) -> Wing:
         """Validate and normalise inputs; any per-station input may be one number for all, and
         `airfoil` one camber line for all (None, "naca4412", {"x": [...], "camber": [...]}) or
         a list of N. Give the stiffnesses, or a `spar` they follow from, not both. `cl_max`:
         the sections' maximum lift coefficient (one number or N), or None for the default of
-        `ValidityLimits`."""
+        `ValidityLimits`. `control_surfaces`: a list of `solver.ControlSurface` (or mappings of
+        their fields)."""
         y_arr = _station_array("y", y, None)
         n = y_arr.shape[0]
         if n < MIN_STATIONS:
@@ -206,6 +213,7 @@ class Wing:
         stall = None if cl_max is None else _station_array("cl_max", cl_max, n)
         if stall is not None and not np.all(stall > 0):
             raise InvalidInput("cl_max", "must be positive at every station")
+        surfaces = validate_surfaces(control_surfaces, y_arr)
         return cls(
             y_arr,
             chord_arr,
@@ -217,6 +225,7 @@ class Wing:
             camber,
             tube,
             stall,
+            surfaces,
         )
 
     @property
@@ -254,6 +263,9 @@ class Wing:
         if self.cl_max is not None:  # what is said about the answer, so a part of its identity
             digest.update(b"cl_max")
             digest.update(np.ascontiguousarray(self.cl_max + 0.0, dtype=np.float64).tobytes())
+        for surface in self.control_surfaces:
+            digest.update(b"control_surface")
+            digest.update(surface.key)
         return digest.hexdigest()
 
     def arrays(self) -> tuple[np.ndarray, ...]:
@@ -270,13 +282,15 @@ class Wing:
         )
 
     def camber_at(self, x: np.ndarray) -> np.ndarray:
-        """(N, len(x)) [-] camber / chord of each station's section at x / chord."""
+        """(N, len(x)) [-] camber / chord of each station's section at x / chord, the flaps'
+        deflection included (`solver.controls`; refused where x cannot carry a flap)."""
+        flaps = symmetric_camber(self.control_surfaces, self.y, x)
         if not self.camber:
-            return np.zeros((self.n_stations, len(x)))
+            return flaps
         # One airfoil for the whole wing is one line repeated: evaluate each line once.
         lines = {id(line): line for line in self.camber}
         values = {key: line.at(x) for key, line in lines.items()}
-        return np.array([values[id(line)] for line in self.camber])
+        return np.array([values[id(line)] for line in self.camber]) + flaps
 
 
 def _check_airspeed(condition: FlightCondition | TrimCondition, other: str) -> None:

@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SOLVER_LAYERS: list[list[str]] = [
     ["errors"],
     ["fields"],
-    ["airfoil", "spar"],
+    ["airfoil", "spar", "controls"],
     ["inputs", "layout"],
     ["geometry"],
     ["vlm"],
