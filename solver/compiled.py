@@ -41,7 +41,7 @@ from typing import TypeVar
 import casadi as ca
 import numpy as np
 
-from solver.evaluation import AlphaTerms, Evaluation
+from solver.evaluation import AlphaTerms, ControlTerms, Evaluation
 from solver.layout import Layout
 from solver.residual import (
     MODEL_VERSION,
@@ -194,6 +194,20 @@ class _BufferedCall:
 _Functions = tuple[ca.Function, ca.Function, ca.Function]
 
 
+def _alpha_terms(outputs: list[np.ndarray]) -> AlphaTerms:
+    """The coupled function's trim and design outputs (copies) as `AlphaTerms`."""
+    r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = outputs
+    return AlphaTerms(
+        r0_alpha.ravel(),
+        r1_alpha.ravel(),
+        float(lift[0, 0]),
+        lift_x.ravel(),
+        float(lift_alpha[0, 0]),
+        float(drag[0, 0]),
+        drag_x.ravel(),
+    )
+
+
 def _buffered_calls(functions: _Functions) -> list[_BufferedCall]:
     """One buffered call per function, in the order of `_Functions`."""
     return [_BufferedCall(function) for function in functions]
@@ -248,31 +262,56 @@ class CompiledModel:
     def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
         """`evaluate`, and what trim and design add (same evaluation, nothing recomputed)."""
         evaluation, alpha_outputs = self._calls[0].collect(
-            x, p, lambda outputs: (self._evaluation(outputs), [a.copy() for a in outputs[5:]])
+            x, p, lambda outputs: (self._evaluation(outputs), [a.copy() for a in outputs[5:12]])
         )
-        r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = alpha_outputs
-        terms = AlphaTerms(
-            r0_alpha.ravel(),
-            r1_alpha.ravel(),
-            float(lift[0, 0]),
-            lift_x.ravel(),
-            float(lift_alpha[0, 0]),
-            float(drag[0, 0]),
-            drag_x.ravel(),
+        return evaluation, _alpha_terms(alpha_outputs)
+
+    def evaluate_with_controls(
+        self, x: np.ndarray, p: np.ndarray
+    ) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
+        """`evaluate_with_alpha`, and what control surfaces and roll add (same evaluation)."""
+        evaluation, alpha_outputs, control_outputs = self._calls[0].collect(
+            x,
+            p,
+            lambda outputs: (
+                self._evaluation(outputs),
+                [a.copy() for a in outputs[5:12]],
+                [c.copy() for c in outputs[12:]],
+            ),
         )
-        return evaluation, terms
+        r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p = control_outputs
+        controls = ControlTerms(
+            r0_c.ravel(),
+            r1_c.ravel(),
+            float(lift_c[0, 0]),
+            float(roll[0, 0]),
+            roll_x.ravel(),
+            float(roll_c[0, 0]),
+            r0_p.ravel(),
+            r1_p.ravel(),
+            float(roll_p[0, 0]),
+        )
+        return evaluation, _alpha_terms(alpha_outputs), controls
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(r0, r1) at x, without derivatives."""
-        r0, r1, _ = self._calls[1](x, p)
+        r0, r1, *_ = self._calls[1](x, p)
         return r0.ravel(), r1.ravel()
 
     def residual_with_lift(
         self, x: np.ndarray, p: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) at x, and the lift of both halves per unit q [m^2], without derivatives."""
-        r0, r1, lift = self._calls[1](x, p)
+        r0, r1, lift, _ = self._calls[1](x, p)
         return r0.ravel(), r1.ravel(), float(lift[0, 0])
+
+    def residual_with_roll(
+        self, x: np.ndarray, p: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) at x, and the rolling moment per unit q [m^3] (`ControlTerms.roll`),
+        without derivatives."""
+        r0, r1, _, roll = self._calls[1](x, p)
+        return r0.ravel(), r1.ravel(), float(roll[0, 0])
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q about the undeformed elastic axis,

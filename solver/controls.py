@@ -56,6 +56,9 @@ __all__ = [
 
 MAX_DEFLECTION = 25.0  # [deg] see ControlSurface.deflection
 _MAX_NAME = 64
+# [-] of the chord: a hinge this close to a node is on it (cosine nodes carry round-off: the
+# k = 3 node at 0.75 is 0.7499999999999999).
+_ON_NODE = 1e-12
 
 
 @dataclass(frozen=True)
@@ -165,9 +168,7 @@ class ControlSurface:
     @property
     def key(self) -> bytes:
         numbers = np.array([self.start, self.end, self.hinge, self.deflection]) + 0.0
-        return (
-            f"{self.name}\0{self.extent_unit}\0{self.kind}\0".encode() + numbers.tobytes()
-        )
+        return f"{self.name}\0{self.extent_unit}\0{self.kind}\0".encode() + numbers.tobytes()
 
 
 def validate_surfaces(specs: object, y: np.ndarray) -> tuple[ControlSurface, ...]:
@@ -239,7 +240,7 @@ def hinge_nodes(x: np.ndarray) -> float:
 
 def _check_resolution(surface: ControlSurface, index: int, x: np.ndarray) -> None:
     aftmost = hinge_nodes(x)
-    if surface.hinge > aftmost:
+    if surface.hinge > aftmost + _ON_NODE:
         k = x.size - 1
         needed = _panels_for(surface.hinge)
         fix = (
@@ -259,7 +260,7 @@ def _panels_for(hinge: float) -> int | None:
     """The fewest cosine-spaced chordwise panels (<= 8) whose last interior node is aft of or
     at `hinge`."""
     for k in range(2, 9):
-        if 0.5 - 0.5 * math.cos(math.pi * (k - 1) / k) >= hinge:
+        if 0.5 - 0.5 * math.cos(math.pi * (k - 1) / k) + _ON_NODE >= hinge:
             return k
     return None
 

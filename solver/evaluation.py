@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["AlphaTerms", "Evaluation"]
+__all__ = ["AlphaTerms", "ControlTerms", "Evaluation"]
 
 
 @dataclass(frozen=True)
@@ -56,3 +56,27 @@ class AlphaTerms:
     lift_alpha: float
     drag: float
     drag_x: np.ndarray
+
+
+@dataclass(frozen=True)
+class ControlTerms:
+    """What control surfaces and roll add at one state x (`solver.residual`).
+
+    Along the model's control direction (d(camber)/d(deflection), per radian of deflection):
+    r0, r1: (n,) d(r0), d(r1); lift: [m^2/rad] d(lift per unit q) (both halves).
+    roll: [m^3] the rolling moment about x per unit q (twice the right half's: both halves' in
+    the antisymmetric flow); roll_x: (n,) its gradient in x; roll_control: [m^3/rad] its
+    derivative along the control direction.
+    Per unit roll rate p / V [rad/m]: rate_r0, rate_r1: (n,) d(r0), d(r1); roll_rate: [m^4]
+    d(roll).
+    """
+
+    r0: np.ndarray
+    r1: np.ndarray
+    lift: float
+    roll: float
+    roll_x: np.ndarray
+    roll_control: float
+    rate_r0: np.ndarray
+    rate_r1: np.ndarray
+    roll_rate: float

@@ -13,7 +13,12 @@ Equations (3N + M), in this order:
 Parameters p, in this order:
     y, chord, elastic_axis, EI, GJ, jig_twist (N each), camber (N (k + 1), station-major:
     camber / chord at each station's chordwise nodes), alpha [deg], sweep [deg],
-    deformed_axis (0: torque about the undeformed elastic axis, 1: about the heaved one).
+    deformed_axis (0: torque about the undeformed elastic axis, 1: about the heaved one),
+    then the image half's flow (`solver.vlm`): image (+1 the mirror, symmetric flow; -1 the
+    rotation about x, antisymmetric flow), image_jacobian (the weight of the image's own
+    derivatives: equal to image for the exact Jacobian), roll_rate [rad/m] (p / V, a steady
+    roll rate about x per unit airspeed), and control (N (k + 1), station-major): the
+    direction d(camber)/d(deflection) [1/rad] of the control derivatives.
 """
 
 from __future__ import annotations
@@ -48,7 +53,7 @@ class Layout:
 
     @property
     def n_parameters(self) -> int:
-        return 6 * self.n + self.n * (self.chordwise + 1) + 3
+        return 6 * self.n + 2 * self.n * (self.chordwise + 1) + 6
 
     # Unknowns
     @property
@@ -108,17 +113,30 @@ class Layout:
         alpha_deg: float,
         sweep_deg: float,
         deformed_axis: bool,
+        image: float = 1.0,
+        image_jacobian: float = 1.0,
+        roll_rate: float = 0.0,
+        control: np.ndarray | None = None,
     ) -> np.ndarray:
         """(n_parameters,) from the wing's six station arrays (y, chord, elastic_axis, EI, GJ,
-        jig_twist), its camber at the chordwise nodes (N, k + 1), alpha and sweep [deg]."""
+        jig_twist), its camber at the chordwise nodes (N, k + 1), alpha and sweep [deg], and the
+        image's flow (module docstring; control (N, k + 1) [1/rad], default zero)."""
+        if control is None:
+            control = np.zeros(self.n * (self.chordwise + 1))
         return np.concatenate(
-            [*arrays, np.ravel(camber), [alpha_deg, sweep_deg, 1.0 if deformed_axis else 0.0]]
+            [
+                *arrays,
+                np.ravel(camber),
+                [alpha_deg, sweep_deg, 1.0 if deformed_axis else 0.0],
+                [image, image_jacobian, roll_rate],
+                np.ravel(control),
+            ]
         )
 
     @property
     def alpha_index(self) -> int:
         """Where alpha [deg] sits in the parameter vector."""
-        return self.n_parameters - 3
+        return 6 * self.n + self.n * (self.chordwise + 1)
 
     def split(self, p):  # type: ignore[no-untyped-def]
         """The parameter vector's parts (symbolic or numeric): y, chord, elastic_axis, EI, GJ,
@@ -129,3 +147,14 @@ class Layout:
         camber = p[start : start + n * k1]
         end = start + n * k1
         return (*parts, camber, p[end], p[end + 1], p[end + 2])
+
+    def split_flow(self, p):  # type: ignore[no-untyped-def]
+        """The image's flow in the parameter vector (symbolic or numeric): image,
+        image_jacobian, roll_rate [rad/m], control (N (k + 1)) [1/rad]."""
+        start = self.alpha_index + 3
+        return (
+            p[start],
+            p[start + 1],
+            p[start + 2],
+            p[start + 3 : start + 3 + self.n * (self.chordwise + 1)],
+        )

@@ -27,7 +27,14 @@ per unit V, so the residual is exactly affine in q:
     r(x; p, q) = r0(x; p) + q r1(x; p),   J = J0 + q J1.
 
 The compiled function returns r0, r1, J0, J1 (their non-zero row blocks), and for trimmed
-flight the derivatives of r0 and r1 in alpha and the lift per unit q with its derivatives. The
+flight the derivatives of r0 and r1 in alpha and the lift per unit q with its derivatives. For
+control surfaces and roll (`solver.effectiveness`, `solver.roll`) it also returns the
+derivatives of r0, r1, the lift and the rolling moment along the control direction (a
+d(camber)/d(deflection) parameter) and in the roll rate, and the rolling moment's gradient. The
+image half's flow (mirror or rotation, `solver.vlm`) and a steady roll rate p, which adds
+(p / V) (0, z, -y) to the unit freestream at the collocation and force points (the air seen
+from a wing rolling about x), are parameters: one compiled model serves the symmetric and the
+antisymmetric problems. The
 Jacobian is exact: CasADi differentiates the lattice geometry, the aerodynamic glue and the
 horseshoe kernel (`vlm.pair_kernel` at the force points; `vlm.normal_pair_kernel` at the
 collocation points, where tangency needs only the normal component); the O(M^2)
@@ -56,18 +63,28 @@ __all__ = [
 
 # Bump when the equations or the graph they are generated from change: compiled libraries on
 # disk are keyed by it.
-MODEL_VERSION = "11"
+MODEL_VERSION = "12"
 
 DEG_PER_RAD = 180.0 / np.pi
-# Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
-# (r x F) . e_s [m^3 per unit q].
-_LOADS = 5
+# Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s),
+# (r x F) . e_s and (r x F) . e_x [m^3 per unit q] (the last: the rolling moment about x).
+_LOADS = 6
+_ROLL = 5
 
 
 def _freestream(alpha_deg: ca.SX) -> ca.SX:
     """Unit freestream velocity in geometry axes, (3,) [-]."""
     alpha = alpha_deg * DEG
     return ca.vertcat(ca.cos(alpha), 0, ca.sin(alpha))
+
+
+def _onset(alpha_deg: ca.SX, roll_rate: ca.SX, points: ca.SX) -> ca.SX:
+    """(3, M) [-] the air's velocity per unit V at `points` (3, M) [m]: the freestream, plus
+    the roll rate's (p / V) (0, z, -y) (the air seen from a wing rolling about x at p [rad/s],
+    x aft, y right, z up; positive p raises the right wing)."""
+    m = points.shape[1]
+    helix = ca.vertcat(ca.DM.zeros(1, m), points[2, :], -points[1, :])
+    return ca.repmat(_freestream(alpha_deg), 1, m) + roll_rate * helix
 
 
 class _Parameters:
@@ -105,21 +122,31 @@ class _Parameters:
 # them, so they are built once per mesh, not three times.
 @functools.lru_cache(maxsize=8)
 def _lattice_function(layout: Layout) -> ca.Function:
-    """(z, parameters) -> vortex vertices, collocation and force points, the panels' unit
-    normals, and the four point sets' derivatives w.r.t. z = [u; u'; phi] (3N)."""
+    """(z, parameters, control) -> vortex vertices, collocation and force points, the panels'
+    unit normals, the four point sets' derivatives w.r.t. z = [u; u'; phi] (3N), and their
+    derivatives along the camber direction `control` (3M, 1 each)."""
     params = _Parameters(layout)
     z = ca.SX.sym("z", 3 * layout.n)
+    control = ca.SX.sym("control", params.camber.shape[0])
     lat = params.lattice(z)
     outputs = [lat.left, lat.right, lat.collocation, lat.center]
     jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
-    return ca.Function("wing_lattice", [z, *params.inputs], [*outputs, lat.normal, *jacobians])
+    along = [ca.jtimes(ca.vec(out), params.camber, control) for out in outputs]
+    return ca.Function(
+        "wing_lattice",
+        [z, *params.inputs, control],
+        [*outputs, lat.normal, *jacobians, *along],
+    )
 
 
-def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep: ca.SX):
+def _panel_loads(
+    lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep: ca.SX, roll_rate: ca.SX
+):
     """Per-panel forces per unit q (Kutta-Joukowski F = rho (V_local x l) Gamma = 2 q (V_hat_local
-    x l) g) and their moments about the elastic axis: ((3, M) force [m^2], (5M,) loads)."""
+    x l) g) and their moments about the elastic axis and about x: ((3, M) force [m^2], (6M,)
+    loads)."""
     m = lat.leg.shape[1]
-    v_local = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced, 3, m)
+    v_local = _onset(alpha_deg, roll_rate, lat.center) + ca.reshape(induced, 3, m)
     leg, g_row = lat.leg, g.T
     force = 2 * ca.vertcat(
         (v_local[1, :] * leg[2, :] - v_local[2, :] * leg[1, :]) * g_row,
@@ -135,7 +162,14 @@ def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep
         center[0, :] * force[1, :] - center[1, :] * force[0, :],
     )
     torque = e_s[0] * moment[0, :] + e_s[1] * moment[1, :]
-    loads = ca.vertcat(force[0, :].T, force[1, :].T, force[2, :].T, (force[2, :] * arm).T, torque.T)
+    loads = ca.vertcat(
+        force[0, :].T,
+        force[1, :].T,
+        force[2, :].T,
+        (force[2, :] * arm).T,
+        torque.T,
+        moment[0, :].T,
+    )
     return force, loads
 
 
@@ -143,22 +177,27 @@ def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep
 def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
     """Tangency residuals and per-panel loads given the induced velocities.
 
-    Outputs: tangency (M,) [-]; loads (5M,) per unit q (see _LOADS). With `with_jacobians` also
+    Outputs: tangency (M,) [-]; loads (6M,) per unit q (see _LOADS). With `with_jacobians` also
     their partial derivatives w.r.t. w = [u; u'; phi; g] (the induced velocities held fixed: for
     tangency that leaves the normal's rotation), the loads' w.r.t. the induced velocities at the
-    force points, and both w.r.t. alpha. (Tangency's derivative through the induced velocity is
-    n . d(induced), which `vlm.normal_source_columns` gives directly.)
+    force points, both w.r.t. alpha, both along the camber direction `control` and both w.r.t.
+    the roll rate. (Tangency's derivative through the induced velocity is n . d(induced), which
+    `vlm.normal_source_columns` gives directly.)
     """
     m = layout.n_panels
     params = _Parameters(layout)
     z = ca.SX.sym("z", 3 * layout.n)
     g = ca.SX.sym("g", m)
     alpha_deg = ca.SX.sym("alpha")
+    roll_rate = ca.SX.sym("roll_rate")
+    control = ca.SX.sym("control", params.camber.shape[0])
     induced_tangency = ca.SX.sym("induced_tangency", 3 * m)
     induced_forces = ca.SX.sym("induced_forces", 3 * m)
     lat = params.lattice(z)
-    _, loads = _panel_loads(lat, g, alpha_deg, induced_forces, params.sweep)
-    v_collocation = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced_tangency, 3, m)
+    _, loads = _panel_loads(lat, g, alpha_deg, induced_forces, params.sweep, roll_rate)
+    v_collocation = _onset(alpha_deg, roll_rate, lat.collocation) + ca.reshape(
+        induced_tangency, 3, m
+    )
     tangency = ca.sum1(v_collocation * lat.normal).T
     outputs = [tangency, loads]
     if with_jacobians:
@@ -169,10 +208,23 @@ def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
             ca.jacobian(loads, induced_forces),
             ca.jacobian(tangency, alpha_deg),
             ca.jacobian(loads, alpha_deg),
+            ca.jtimes(tangency, params.camber, control),
+            ca.jtimes(loads, params.camber, control),
+            ca.jacobian(tangency, roll_rate),
+            ca.jacobian(loads, roll_rate),
         ]
     return ca.Function(
         "aero_glue" if with_jacobians else "aero_glue_values",
-        [z, g, *params.inputs, alpha_deg, induced_tangency, induced_forces],
+        [
+            z,
+            g,
+            *params.inputs,
+            alpha_deg,
+            induced_tangency,
+            induced_forces,
+            roll_rate,
+            control,
+        ],
         outputs,
     )
 
@@ -239,6 +291,12 @@ class _Beam:
         """(2(N-1), 1) the q-proportional part of the bending and torsion equations."""
         torque = self._outboard(loads, 4) - deformed * heave * self.axis_force(loads)
         return self.rows(self.bending(loads), torque)
+
+    def load_rows_along(self, loads_along: ca.MX, heave: ca.MX, deformed: ca.MX) -> ca.MX:
+        """(2(N-1), 1) d(load_rows) along a parameter the heave does not depend on (alpha, the
+        control direction, the roll rate), from the loads' derivative (6M, 1) along it."""
+        torque = self._outboard(loads_along, 4) - deformed * heave * self.axis_force(loads_along)
+        return self.rows(self.bending(loads_along), torque)
 
     def load_rows_jacobian(
         self, loads: ca.MX, loads_x: ca.MX, heave: ca.MX, deformed: ca.MX, heave_columns: ca.DM
@@ -328,6 +386,7 @@ class _Symbols:
             self.sweep,
             self.deformed,
         ) = layout.split(self.p)
+        self.image, self.image_jacobian, self.roll_rate, self.control = layout.split_flow(self.p)
         self.geometry_inputs = [self.y, self.chord, self.ea, self.jig, self.camber, self.sweep]
         self.beam = _Beam(layout, self.y, self.ei, self.gj, self.sweep)
         # The horseshoe of panel p induces nothing of its bound leg at its own force point.
@@ -335,8 +394,11 @@ class _Symbols:
         self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
 
     def lattice(self) -> tuple[ca.MX, ...]:
-        """left, right, collocation, center, normal, and the point sets' derivatives w.r.t. z."""
-        return tuple(_lattice_function(self.layout)(self.z, *self.geometry_inputs))  # type: ignore[arg-type]
+        """left, right, collocation, center, normal, the point sets' derivatives w.r.t. z, and
+        along the control direction."""
+        return tuple(
+            _lattice_function(self.layout)(self.z, *self.geometry_inputs, self.control)  # type: ignore[arg-type]
+        )
 
     def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
         return _aero_function(self.layout, with_jacobians)(
@@ -346,6 +408,8 @@ class _Symbols:
             self.alpha_deg,
             induced_tangency,
             induced_forces,
+            self.roll_rate,
+            self.control,
         )
 
     def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
@@ -373,11 +437,23 @@ class _Symbols:
             ca.cos(alpha) * ca.sum1(loads[2 * m : 3 * m, :]) - ca.sin(alpha) * ca.sum1(loads[:m, :])
         )
 
+    def roll(self, loads: ca.MX) -> ca.MX:
+        """Twice the right half's rolling moment about x per unit q [m^3], 2 sum (y Fz - z Fy):
+        both halves' in the antisymmetric flow (image -1), where the image rolls as the right
+        half does; with image_jacobian -1 about a symmetric state, the derivatives of both
+        halves' for the antisymmetric disturbance (`solver.vlm`)."""
+        m = self.m
+        return 2 * ca.sum1(loads[_ROLL * m : (_ROLL + 1) * m, :])
+
 
 def build_coupled_function(layout: Layout) -> ca.Function:
     """(x, p) -> r0, r1, the non-zero row blocks of J0 and J1 (dense), and for trim r0_alpha,
     r1_alpha (per degree), lift (per unit q), lift_x (1, n) and lift_alpha; for design the
-    near-field drag (per unit q) and drag_x (1, n). See the module docstring.
+    near-field drag (per unit q) and drag_x (1, n); for control surfaces r0_control, r1_control
+    and lift_control along the control direction (per radian), the rolling moment (twice the
+    right half's, per unit q, `_Symbols.roll`), roll_x (1, n) and roll_control; for roll
+    r0_rate, r1_rate and roll_rate, per unit roll rate p / V [rad/m]. See the module
+    docstring.
 
     The Jacobians leave as row blocks (`solver.layout`): J0's structure rows (3N, n) and
     tangency rows (M, n), J1's load rows (2(N-1), n), its only non-zero ones. CasADi stores
@@ -395,13 +471,18 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         right_z,
         collocation_z,
         center_z,
+        left_c,
+        right_c,
+        collocation_c,
+        center_c,
     ) = sym.lattice()
     g_row = sym.circulation.T
+    image = (sym.image, sym.image_jacobian)
     ind_t, infl_t, dfield_t, dleft_t, dright_t = normal_source_columns(m)(
-        collocation, normal, sym.all_bound_legs, left, right, g_row
+        collocation, normal, sym.all_bound_legs, left, right, g_row, *image
     )
     ind_f, infl_f, dfield_f, dleft_f, dright_f = source_columns(m)(
-        center, sym.no_self_bound_leg, left, right, g_row
+        center, sym.no_self_bound_leg, left, right, g_row, *image
     )
     # Normal induced velocities at the collocation points and induced velocities at the force
     # points, w.r.t. x = [z; g].
@@ -412,9 +493,19 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     ind_f_x = ca.horzcat(
         _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
     )
-    tangency, loads, tangency_w, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
-        True, ind_t, ind_f
-    )
+    (
+        tangency,
+        loads,
+        tangency_w,
+        loads_w,
+        loads_ind,
+        tangency_a,
+        loads_a,
+        tangency_c,
+        loads_c,
+        tangency_p,
+        loads_p,
+    ) = sym.aero(True, ind_t, ind_f)
     tangency_x = tangency_w + normal_ind_t_x
     loads_x = loads_w + ca.mtimes(loads_ind, ind_f_x)
     r0, r1 = sym.residual(tangency, loads)
@@ -422,15 +513,25 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     heave_columns = ca.DM(np.eye(n, nx))
     j0_structure = ca.jacobian(structure, sym.x)
     j1_loads = sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, sym.deformed, heave_columns)
-    r0_alpha = ca.vertcat(ca.MX(3 * n, 1), tangency_a)
-    r1_alpha = ca.vertcat(
-        ca.MX(3 + layout.n_strips, 1),
-        sym.beam.rows(
-            sym.beam.bending(loads_a),
-            sym.beam._outboard(loads_a, 4)
-            - sym.deformed * sym.heave * sym.beam.axis_force(loads_a),
-        ),
-        ca.MX(m, 1),
+
+    def r0_along(tangency_along: ca.MX) -> ca.MX:
+        return ca.vertcat(ca.MX(3 * n, 1), tangency_along)
+
+    def r1_along(loads_along: ca.MX) -> ca.MX:
+        return ca.vertcat(
+            ca.MX(3 + layout.n_strips, 1),
+            sym.beam.load_rows_along(loads_along, sym.heave, sym.deformed),
+            ca.MX(m, 1),
+        )
+
+    r0_alpha, r1_alpha = r0_along(tangency_a), r1_along(loads_a)
+    # Along the control direction: the geometry's own part, and the induced velocities' by the
+    # chain rule through the lattice's points (as for z).
+    tangency_c = tangency_c + _induced_derivative(
+        dfield_t, dleft_t, dright_t, collocation_c, left_c, right_c, m, 1
+    )
+    loads_c = loads_c + ca.mtimes(
+        loads_ind, _induced_derivative(dfield_f, dleft_f, dright_f, center_c, left_c, right_c, m)
     )
     lift = sym.lift(loads)
     lift_x = sym.lift(loads_x)
@@ -441,6 +542,17 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     )
     drag = sym.drag(loads)
     drag_x = sym.drag(loads_x)
+    controls = [
+        r0_along(tangency_c),
+        r1_along(loads_c),
+        sym.lift(loads_c),
+        sym.roll(loads),
+        sym.roll(loads_x),
+        sym.roll(loads_c),
+        r0_along(tangency_p),
+        r1_along(loads_p),
+        sym.roll(loads_p),
+    ]
     outputs = [
         r0,
         r1,
@@ -454,6 +566,7 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         lift_alpha,
         drag,
         drag_x,
+        *controls,
     ]
     return ca.Function(
         f"flexwing_coupled_{_tag(layout)}",
@@ -473,6 +586,15 @@ def build_coupled_function(layout: Layout) -> ca.Function:
             "lift_alpha",
             "drag",
             "drag_x",
+            "r0_control",
+            "r1_control",
+            "lift_control",
+            "roll",
+            "roll_x",
+            "roll_control",
+            "r0_rate",
+            "r1_rate",
+            "roll_rate",
         ],
     )
 
@@ -485,14 +607,21 @@ def _induced_values(
     sym: _Symbols, left: ca.MX, right: ca.MX, field: ca.MX, weights: ca.DM
 ) -> ca.MX:
     induced = induced_velocities(sym.m)
-    return induced(field, weights, left, right, sym.circulation.T)
+    return induced(field, weights, left, right, sym.circulation.T, sym.image)
+
+
+def _values_lattice(sym: _Symbols) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
+    """left, right, collocation, center: the lattice without its derivatives."""
+    left, right, collocation, center, *_ = sym.lattice()
+    return left, right, collocation, center
 
 
 def build_residual_function(layout: Layout) -> ca.Function:
-    """(x, p) -> (r0, r1, lift): the residual alone, without derivatives (path correctors,
-    checks), and the lift per unit q [m^2] (the trimmed system's extra row)."""
+    """(x, p) -> (r0, r1, lift, roll): the residual alone, without derivatives (path
+    correctors, checks), the lift per unit q [m^2] (the trimmed system's extra row) and the
+    rolling moment per unit q [m^3] (`_Symbols.roll`; the free-roll system's extra row)."""
     sym = _Symbols(layout)
-    left, right, collocation, center, *_ = sym.lattice()
+    left, right, collocation, center = _values_lattice(sym)
     ind_t = _induced_values(sym, left, right, collocation, sym.all_bound_legs)
     ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
     tangency, loads = sym.aero(False, ind_t, ind_f)
@@ -500,9 +629,14 @@ def build_residual_function(layout: Layout) -> ca.Function:
     return ca.Function(
         f"flexwing_residual_{_tag(layout)}",
         [sym.x, sym.p],
-        [ca.densify(r0), ca.densify(r1), ca.densify(sym.lift(loads))],
+        [
+            ca.densify(r0),
+            ca.densify(r1),
+            ca.densify(sym.lift(loads)),
+            ca.densify(sym.roll(loads)),
+        ],
         ["x", "p"],
-        ["r0", "r1", "lift"],
+        ["r0", "r1", "lift", "roll"],
     )
 
 
@@ -515,20 +649,20 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
     """
     sym = _Symbols(layout)
     m = sym.m
-    left, right, _, center, *_ = sym.lattice()
+    left, right, _, center = _values_lattice(sym)
     ind_f = _induced_values(sym, left, right, center, sym.no_self_bound_leg)
     params = _Parameters(layout)
     z, g, alpha = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m), ca.SX.sym("alpha")
-    induced = ca.SX.sym("induced", 3 * m)
+    induced, roll_rate = ca.SX.sym("induced", 3 * m), ca.SX.sym("roll_rate")
     lat = params.lattice(z)
-    force, loads = _panel_loads(lat, g, alpha, induced, params.sweep)
+    force, loads = _panel_loads(lat, g, alpha, induced, params.sweep, roll_rate)
     panel = ca.Function(
         "panel_forces",
-        [z, g, *params.inputs, alpha, induced],
-        [force, loads[4 * m :].T, lat.quarter_chord],
+        [z, g, *params.inputs, alpha, induced, roll_rate],
+        [force, loads[4 * m : 5 * m].T, lat.quarter_chord],
     )
     force_mx, torque_mx, quarter_mx = panel(
-        sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f
+        sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f, sym.roll_rate
     )
     return ca.Function(
         f"flexwing_panel_loads_{_tag(layout)}",

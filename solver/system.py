@@ -1,7 +1,10 @@
 """One wing at one angle of attack, as modelled: the compiled model bound to the wing's parameters.
 
 Everything above this module speaks of a `CoupledSystem`: evaluate r0, r1, J0, J1 at a state,
-the residual alone, the panel loads, and the scaled coordinates its continuation uses.
+the residual alone, the panel loads, and the scaled coordinates its continuation uses. Its
+`flow` says which flow the image half carries (`solver.vlm`): the symmetric flow by default,
+the antisymmetric one or the antisymmetric linearisation for roll (`solver.roll`), with a roll
+rate and the control direction of one surface.
 """
 
 from __future__ import annotations
@@ -14,12 +17,45 @@ import numpy as np
 from solver.cache import cached, model_for
 from solver.compiled import CompiledModel
 from solver.continuation import branch_scales
-from solver.evaluation import AlphaTerms, Evaluation
+from solver.controls import antisymmetric_camber, camber_rate
+from solver.evaluation import AlphaTerms, ControlTerms, Evaluation
 from solver.geometry import chordwise_nodes
 from solver.inputs import SolverOptions, Wing
 from solver.layout import Layout
 
-__all__ = ["CoupledSystem"]
+__all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
+
+
+@dataclass(frozen=True)
+class Flow:
+    """What the model's image half carries, and what disturbs the flow (`solver.vlm`).
+
+    image: +1 the mirror image (symmetric flow), -1 the rotation about x (exactly
+        antisymmetric flow: the right half's camber then includes the ailerons'; valid for
+        sections symmetric in z at alpha 0, `solver.roll`).
+    image_jacobian: the weight of the image's own derivatives: equal to `image` for the exact
+        Jacobian; -1 with image +1 for the antisymmetric block at a symmetric state.
+    roll_rate: [rad/m] p / V, a steady roll rate about x (positive raises the right wing).
+    control: the index of the wing's control surface along whose deflection the model's
+        control derivatives are taken (`solver.evaluation.ControlTerms`), or None.
+    """
+
+    image: float = 1.0
+    image_jacobian: float = 1.0
+    roll_rate: float = 0.0
+    control: int | None = None
+
+    @property
+    def key(self) -> tuple[float, float, float, int]:
+        return (
+            self.image + 0.0,
+            self.image_jacobian + 0.0,
+            self.roll_rate + 0.0,
+            -1 if self.control is None else self.control,
+        )
+
+
+SYMMETRIC = Flow()
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,15 +67,22 @@ class CoupledSystem:
     alpha: float
     chordwise: int = 1
     deformed_axis: bool = False
+    flow: Flow = SYMMETRIC
 
     @classmethod
-    def of(cls, wing: Wing, alpha: float, options: SolverOptions) -> CoupledSystem:
-        return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed")
+    def of(
+        cls, wing: Wing, alpha: float, options: SolverOptions, flow: Flow = SYMMETRIC
+    ) -> CoupledSystem:
+        return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed", flow)
+
+    def with_flow(self, flow: Flow) -> CoupledSystem:
+        """The same wing, alpha and model with another `flow`."""
+        return CoupledSystem(self.wing, self.alpha, self.chordwise, self.deformed_axis, flow)
 
     def at_alpha(self, alpha: float) -> CoupledSystem:
         """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
         model and every other parameter: a trimmed solve changes alpha at every iteration)."""
-        other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis)
+        other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis, self.flow)
         parameters = self.parameters.copy()
         parameters[self.layout.alpha_index] = alpha
         other.__dict__["parameters"] = parameters
@@ -65,17 +108,35 @@ class CoupledSystem:
         return cached(("parameters", *self.key), self._assemble_parameters, _nbytes)
 
     def _assemble_parameters(self) -> np.ndarray:
-        camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
+        wing, flow, nodes = self.wing, self.flow, chordwise_nodes(self.chordwise)
+        camber = wing.camber_at(nodes)
+        if flow.image < 0:  # the right half as it is: its ailerons deflected too
+            camber = camber + antisymmetric_camber(wing.control_surfaces, wing.y, nodes)
+        control = (
+            None
+            if flow.control is None
+            else camber_rate(wing.control_surfaces, flow.control, wing.y, nodes)
+        )
         parameters = self.layout.parameters(
-            self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
+            wing.arrays(),
+            camber,
+            self.alpha,
+            wing.sweep,
+            self.deformed_axis,
+            flow.image,
+            flow.image_jacobian,
+            flow.roll_rate,
+            control,
         )
         parameters.setflags(write=False)
         return parameters
 
     @property
-    def key(self) -> tuple[str, float, int, bool]:
-        """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike)."""
-        return (self.wing.key, self.alpha + 0.0, self.chordwise, self.deformed_axis)
+    def key(self) -> tuple:  # type: ignore[type-arg]
+        """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike);
+        the flow's only when it is not the symmetric one."""
+        key = (self.wing.key, self.alpha + 0.0, self.chordwise, self.deformed_axis)
+        return key if self.flow == SYMMETRIC else (*key, self.flow.key)
 
     def evaluate(self, x: np.ndarray) -> Evaluation:
         return self.model.evaluate(x, self.parameters)
@@ -89,6 +150,13 @@ class CoupledSystem:
     def residual_with_lift(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) and the lift of both halves per unit q [m^2] at x."""
         return self.model.residual_with_lift(x, self.parameters)
+
+    def evaluate_with_controls(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
+        return self.model.evaluate_with_controls(x, self.parameters)
+
+    def residual_with_roll(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) and the rolling moment per unit q [m^3] at x (`ControlTerms.roll`)."""
+        return self.model.residual_with_roll(x, self.parameters)
 
     def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord

@@ -35,10 +35,24 @@ def test_the_parameter_vector_splits_back_into_its_parts():
     layout = Layout(3, 2)
     arrays = tuple(np.full(3, float(k)) for k in range(6))
     camber = np.arange(9.0).reshape(3, 3)
-    p = layout.parameters(arrays, camber, 7.5, 20.0, True)
+    control = -np.arange(9.0).reshape(3, 3)
+    p = layout.parameters(arrays, camber, 7.5, 20.0, True, -1.0, 1.0, 0.25, control)
     assert p.shape == (layout.n_parameters,)
     *parts, camber_part, alpha, sweep, deformed = layout.split(p)
     for k, part in enumerate(parts):
         np.testing.assert_array_equal(part, np.full(3, float(k)))
     np.testing.assert_array_equal(camber_part, camber.ravel())  # station-major
     assert (alpha, sweep, deformed) == (7.5, 20.0, 1.0)
+    assert p[layout.alpha_index] == 7.5
+    image, image_jacobian, roll_rate, control_part = layout.split_flow(p)
+    assert (image, image_jacobian, roll_rate) == (-1.0, 1.0, 0.25)
+    np.testing.assert_array_equal(control_part, control.ravel())
+
+
+def test_the_default_flow_is_the_symmetric_one_without_disturbance():
+    layout = Layout(4, 1)
+    arrays = tuple(np.ones(4) for _ in range(6))
+    p = layout.parameters(arrays, np.zeros((4, 2)), 5.0, 0.0, False)
+    image, image_jacobian, roll_rate, control = layout.split_flow(p)
+    assert (image, image_jacobian, roll_rate) == (1.0, 1.0, 0.0)
+    assert not np.any(control)
