@@ -46,6 +46,7 @@ from solver.layout import Layout
 from solver.residual import (
     MODEL_VERSION,
     build_coupled_function,
+    build_full_span_function,
     build_panel_loads_function,
     build_residual_function,
 )
@@ -150,6 +151,10 @@ def _library_path(layout: Layout) -> Path:
 
 
 T = TypeVar("T")
+
+# The full-span functions of the meshes used, shared by every model of a mesh (VM only).
+_full_span: dict[Layout, ca.Function] = {}
+_full_span_lock = threading.Lock()
 
 
 class _BufferedCall:
@@ -315,8 +320,21 @@ class CompiledModel:
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q about the undeformed elastic axis,
-        center (3, M) force points, quarter_chord (3, N)]: the right half-wing's panels."""
+        center (3, M) force points, quarter_chord (3, N), leading_edge (3, N)]: the right
+        half-wing's panels."""
         return self._calls[2](x, p)
+
+    def full_span(self) -> ca.Function:
+        """`solver.residual.build_full_span_function` of this mesh, and its forward derivative
+        (`ca.Function.forward(1)`): the right half with a left half of its own. Built on first
+        use and served by the virtual machine only: a roll answer calls it once or twice, and
+        generated C code would double the library's compile time for it."""
+        with _full_span_lock:
+            function = _full_span.get(self.layout)
+            if function is None:
+                function = build_full_span_function(self.layout)
+                _full_span[self.layout] = function
+            return function
 
     @property
     def compiling(self) -> bool:

@@ -41,13 +41,15 @@ class PanelLoads:
     """The right half-wing's M = (N-1) k panels at one state and dynamic pressure.
 
     force: (3, M) [N]; torque: (M,) [N m] (r x F) . e_s about the undeformed elastic axis;
-    center: (3, M) [m] deformed force points; quarter_chord: (3, N) [m] the stations'.
+    center: (3, M) [m] deformed force points; quarter_chord, leading_edge: (3, N) [m] the
+    stations'.
     """
 
     force: np.ndarray
     torque: np.ndarray
     center: np.ndarray
     quarter_chord: np.ndarray
+    leading_edge: np.ndarray
 
     def per_strip(self, values: np.ndarray, k: int) -> np.ndarray:
         """(M,) per panel -> (N-1,) summed over each strip's k panels."""
@@ -55,8 +57,8 @@ class PanelLoads:
 
 
 def panel_loads(system: CoupledSystem, x: np.ndarray, q: float) -> PanelLoads:
-    force, torque, center, quarter_chord = system.panel_loads(x)
-    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord)
+    force, torque, center, quarter_chord, leading_edge = system.panel_loads(x)
+    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord, leading_edge)
 
 
 def lift_and_drag(loads: PanelLoads, alpha_deg: float) -> tuple[float, float]:

@@ -57,6 +57,7 @@ from solver.vlm import induced_velocities, normal_source_columns, source_columns
 __all__ = [
     "MODEL_VERSION",
     "build_coupled_function",
+    "build_full_span_function",
     "build_panel_loads_function",
     "build_residual_function",
 ]
@@ -645,7 +646,8 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
 
     Outputs: force (3, M) [m^2] (times q gives N), torque (1, M) [m^3] ((r x F) . e_s about the
     undeformed EA, times q gives N m), center (3, M) [m] force points, quarter_chord (3, N) [m]
-    stations' quarter-chord points; right half-wing, panels i k + j.
+    stations' quarter-chord points, leading_edge (3, N) [m] their deformed leading edges;
+    right half-wing, panels i k + j.
     """
     sym = _Symbols(layout)
     m = sym.m
@@ -659,15 +661,73 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
     panel = ca.Function(
         "panel_forces",
         [z, g, *params.inputs, alpha, induced, roll_rate],
-        [force, loads[4 * m : 5 * m].T, lat.quarter_chord],
+        [force, loads[4 * m : 5 * m].T, lat.quarter_chord, lat.leading_edge],
     )
-    force_mx, torque_mx, quarter_mx = panel(
+    force_mx, torque_mx, quarter_mx, leading_mx = panel(
         sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f, sym.roll_rate
     )
     return ca.Function(
         f"flexwing_panel_loads_{_tag(layout)}",
         [sym.x, sym.p],
-        [force_mx, torque_mx, center, quarter_mx],
+        [force_mx, torque_mx, center, quarter_mx, leading_mx],
         ["x", "p"],
-        ["force", "torque", "center", "quarter_chord"],
+        ["force", "torque", "center", "quarter_chord", "leading_edge"],
+    )
+
+
+def build_full_span_function(layout: Layout) -> ca.Function:
+    """(x, x_image, p, camber_image) -> the right half's r0, r1 and panel loads when the left
+    half moves on its own: its state x_image (n,) and camber camber_image (N (k + 1),) in the
+    mirrored frame (its heave up, its twist nose-up, its circulation along the mirror image's
+    horseshoes from m(B) to m(A)), the mirror m = diag(1, -1, 1) placing it.
+
+    The full-span model's right half, evaluated without derivatives: with x_image = x and the
+    same camber it is the symmetric model (`build_residual_function`, the parameters' image
+    and image_jacobian ignored). Its derivative along (dx, -dx) at a symmetric state is the
+    antisymmetric linearisation (`solver.vlm`, image_jacobian -1), which this function checks
+    independently of the kernel's hand-written derivatives, and gives the linearised panel
+    loads of a roll answer (`solver.roll`, by CasADi's forward differentiation).
+
+    Outputs: r0, r1 (n,); force (3, M) [m^2 per unit q]; torque (1, M) [m^3 per unit q] about the
+    undeformed elastic axis; roll (1, M) [m^3 per unit q] (r x F) . e_x; center (3, M) [m].
+    """
+    sym = _Symbols(layout)
+    m = sym.m
+    x_image = ca.MX.sym("x_image", layout.n_unknowns)
+    camber_image = ca.MX.sym("camber_image", sym.camber.shape[0])
+    left, right, collocation, center = _values_lattice(sym)
+    image_inputs = [sym.y, sym.chord, sym.ea, sym.jig, camber_image, sym.sweep]
+    image_left, image_right, *_ = _lattice_function(layout)(
+        x_image[layout.structure], *image_inputs, sym.control
+    )
+    mirror = ca.DM([1.0, -1.0, 1.0])
+    # The left half's horseshoes, as sources of their own: from m(B) to m(A).
+    sources_left = ca.repmat(mirror, 1, m) * image_right
+    sources_right = ca.repmat(mirror, 1, m) * image_left
+    g_image = x_image[layout.circulation].T
+    own = induced_velocities(m, with_image=False)
+
+    def induced(field: ca.MX, weights: ca.DM) -> ca.MX:
+        return own(field, weights, left, right, sym.circulation.T, 0) + own(
+            field, sym.all_bound_legs, sources_left, sources_right, g_image, 0
+        )
+
+    ind_t = induced(collocation, sym.all_bound_legs)
+    ind_f = induced(center, sym.no_self_bound_leg)
+    tangency, loads = sym.aero(False, ind_t, ind_f)
+    r0, r1 = sym.residual(tangency, loads)
+    force = ca.horzcat(*[loads[c * m : (c + 1) * m] for c in range(3)]).T
+    return ca.Function(
+        f"flexwing_full_span_{_tag(layout)}",
+        [sym.x, x_image, sym.p, camber_image],
+        [
+            ca.densify(r0),
+            ca.densify(r1),
+            force,
+            loads[4 * m : 5 * m].T,
+            loads[_ROLL * m : (_ROLL + 1) * m].T,
+            center,
+        ],
+        ["x", "x_image", "p", "camber_image"],
+        ["r0", "r1", "force", "torque", "roll", "center"],
     )

@@ -36,22 +36,29 @@ class Flow:
     image_jacobian: the weight of the image's own derivatives: equal to `image` for the exact
         Jacobian; -1 with image +1 for the antisymmetric block at a symmetric state.
     roll_rate: [rad/m] p / V, a steady roll rate about x (positive raises the right wing).
-    control: the index of the wing's control surface along whose deflection the model's
-        control derivatives are taken (`solver.evaluation.ControlTerms`), or None.
+    control: the direction of the model's control derivatives
+        (`solver.evaluation.ControlTerms`): one weight per control surface of the wing,
+        d(deflection_i)/d(parameter) (e_j for surface j alone; the ailerons' deflections [rad]
+        for their combined disturbance), or None.
     """
 
     image: float = 1.0
     image_jacobian: float = 1.0
     roll_rate: float = 0.0
-    control: int | None = None
+    control: tuple[float, ...] | None = None
+
+    @classmethod
+    def along(cls, index: int, count: int, **kwargs: float) -> Flow:
+        """The flow whose control direction is surface `index`'s alone, of `count`."""
+        return cls(control=tuple(1.0 if i == index else 0.0 for i in range(count)), **kwargs)
 
     @property
-    def key(self) -> tuple[float, float, float, int]:
+    def key(self) -> tuple[float, float, float, tuple[float, ...]]:
         return (
             self.image + 0.0,
             self.image_jacobian + 0.0,
             self.roll_rate + 0.0,
-            -1 if self.control is None else self.control,
+            () if self.control is None else tuple(w + 0.0 for w in self.control),
         )
 
 
@@ -112,11 +119,19 @@ class CoupledSystem:
         camber = wing.camber_at(nodes)
         if flow.image < 0:  # the right half as it is: its ailerons deflected too
             camber = camber + antisymmetric_camber(wing.control_surfaces, wing.y, nodes)
-        control = (
-            None
-            if flow.control is None
-            else camber_rate(wing.control_surfaces, flow.control, wing.y, nodes)
-        )
+        control = None
+        if flow.control is not None:
+            surfaces = wing.control_surfaces
+            if len(flow.control) != len(surfaces):
+                raise ValueError("the flow's control direction needs one weight per surface")
+            control = sum(
+                (
+                    weight * camber_rate(surfaces, i, wing.y, nodes)
+                    for i, weight in enumerate(flow.control)
+                    if weight != 0.0
+                ),
+                np.zeros((wing.n_stations, self.chordwise + 1)),
+            )
         parameters = self.layout.parameters(
             wing.arrays(),
             camber,
@@ -160,7 +175,7 @@ class CoupledSystem:
 
     def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord
-        (3, N)]."""
+        (3, N), leading_edge (3, N)]."""
         return self.model.panel_loads(x, self.parameters)
 
     def scale(self, q_scale: float) -> np.ndarray:

@@ -458,17 +458,22 @@ def source_columns(n_panels: int) -> ca.Function:
     )
 
 
-def induced_velocities(n_panels: int) -> ca.Function:
+def induced_velocities(n_panels: int, with_image: bool = True) -> ca.Function:
     """Values only: sum_k g_k v_ik at every field point, without derivatives (4x cheaper).
 
     Inputs as `source_columns` but image_jacobian; output induced (3M, 1) [-] per unit V, rows
-    3 i + c.
+    3 i + c. Without the image (`with_image` False) the sources' horseshoes alone (the `image`
+    input is then ignored): what a full-span wing whose halves move apart needs, its image
+    half given as sources of its own (`residual.build_full_span_function`).
     """
     m = n_panels
     field, weight, left, right, g = _pair_symbols()
     image = ca.SX.sym("image")
     right_half, left_half = _halves(field, weight, left, right, image)
-    velocity = _velocity(right_half, left_half, image)
+    if with_image:
+        velocity = _velocity(right_half, left_half, image)
+    else:
+        velocity = right_half.velocity() * _INV_4PI
     pair = ca.Function("vlm_pair_value", [field, weight, left, right, g, image], [g * velocity])
     over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4, 5], [])
     field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)

@@ -53,13 +53,13 @@ def _with_surfaces(deflection: float = 4.0) -> solver.Wing:
     )
 
 
-ROTATION = Flow(image=-1.0, image_jacobian=-1.0, roll_rate=0.05, control=1)
+ROTATION = Flow.along(1, 2, image=-1.0, image_jacobian=-1.0, roll_rate=0.05)
 
 SYSTEMS = {
     "tapered_forward_ea": lambda: CoupledSystem(tapered_forward_ea(), 6.0),
     "antisymmetric_rolling_k3": lambda: CoupledSystem(_with_surfaces(), 0.0, 3, False, ROTATION),
     "symmetric_flap_k3_deformed_axis": lambda: CoupledSystem(
-        _with_surfaces(), 3.0, 3, True, Flow(control=0)
+        _with_surfaces(), 3.0, 3, True, Flow.along(0, 2)
     ),
     "swept_k3_deformed_axis": lambda: CoupledSystem(_swept_cambered_twisted(), 4.0, 3, True),
     "forward_swept_k2": lambda: CoupledSystem(
@@ -151,7 +151,7 @@ def test_the_alpha_derivatives_and_the_lift_gradient_match_finite_differences(na
 
 
 CONTROL_SYSTEMS = {
-    "flap": lambda wing: CoupledSystem(wing, 3.0, 3, True, Flow(control=0)),
+    "flap": lambda wing: CoupledSystem(wing, 3.0, 3, True, Flow.along(0, 2)),
     "aileron_antisymmetric": lambda wing: CoupledSystem(wing, 0.0, 3, False, ROTATION),
 }
 
@@ -165,7 +165,7 @@ def test_the_control_derivatives_are_the_derivatives_in_the_deflection(name: str
     system = build(_with_surfaces())
     x = _deformed_state(system, 11)
     _, _, controls = system.evaluate_with_controls(x)
-    surface = system.flow.control
+    surface = 0 if name == "flap" else 1
     step = 0.01  # [deg]
     deflection = system.wing.control_surfaces[surface].deflection
     moved = []
@@ -229,8 +229,8 @@ def test_at_the_flat_unloaded_jig_the_linearised_antisymmetric_flow_is_the_antis
             dataclasses.replace(c, deflection=0.0) for c in wing.control_surfaces
         ),
     )
-    rotated = CoupledSystem(flat, 0.0, 3, False, Flow(-1.0, -1.0, 0.0, 1))
-    turned = CoupledSystem(flat, 0.0, 3, False, Flow(1.0, -1.0, 0.0, 1))
+    rotated = CoupledSystem(flat, 0.0, 3, False, Flow.along(1, 2, image=-1.0, image_jacobian=-1.0))
+    turned = CoupledSystem(flat, 0.0, 3, False, Flow.along(1, 2, image_jacobian=-1.0))
     x = np.zeros(rotated.layout.n_unknowns)
     (a, _, ca_), (b, _, cb) = rotated.evaluate_with_controls(x), turned.evaluate_with_controls(x)
     for ours, theirs in (
@@ -245,3 +245,76 @@ def test_at_the_flat_unloaded_jig_the_linearised_antisymmetric_flow_is_the_antis
     symmetric = CoupledSystem(flat, 0.0, 3).evaluate(x)
     tangency = rotated.layout.tangency_rows, rotated.layout.circulation
     assert np.max(np.abs(symmetric.jacobian0[tangency] - a.jacobian0[tangency])) > 1e-3
+
+
+def _camber(system: CoupledSystem) -> np.ndarray:
+    return np.asarray(system.layout.split(system.parameters)[6])
+
+
+@pytest.mark.parametrize("name", ["symmetric_flap_k3_deformed_axis", "tapered_forward_ea"])
+def test_with_its_own_left_half_in_step_the_full_span_model_is_the_symmetric_model(name: str):
+    system = SYSTEMS[name]().with_flow(Flow())
+    x = _deformed_state(system, 17)
+    full_span = system.model.full_span()
+    r0, r1, *_ = (np.array(v).ravel() for v in full_span(x, x, system.parameters, _camber(system)))
+    ours0, ours1 = system.residual(x)
+    np.testing.assert_allclose(r0, ours0, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(r1, ours1, rtol=1e-12, atol=1e-14)
+
+
+def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_derivative():
+    """At a deformed, loaded symmetric state (flap and aileron deflected, alpha 3 deg, swept,
+    torque about the heaved axis), the model with the image's own derivatives turned gives
+    d/de r(x + e d, x - e d) of the full-span model whose left half moves on its own: J0, J1,
+    the aileron's column (its camber +c on the right, -c on the left), the roll rate's column
+    and the rolling moment's gradient (2 d/de of the right half's). Central differences, step
+    1e-6: truncation and round-off ~1e-10 of each row's scale; 1e-7 leaves a margin of 1000."""
+    wing = _with_surfaces()
+    system = CoupledSystem(wing, 3.0, 3, True, Flow.along(1, 2, image_jacobian=-1.0))
+    x = _deformed_state(system, 19)
+    evaluation, _, controls = system.evaluate_with_controls(x)
+    p, camber = system.parameters, _camber(system)
+    full_span = system.model.full_span()
+
+    def outputs(right, left, p=p, image_camber=camber):
+        r0, r1, _, _, roll, _ = (np.array(v) for v in full_span(right, left, p, image_camber))
+        return r0.ravel(), r1.ravel(), 2 * float(roll.sum())
+
+    step, n = 1e-6, x.size
+    columns = [np.zeros((n, n)), np.zeros((n, n))]
+    roll_x = np.zeros(n)
+    for k in range(n):
+        dx = np.zeros(n)
+        dx[k] = step
+        plus, minus = outputs(x + dx, x - dx), outputs(x - dx, x + dx)
+        for c in range(2):
+            columns[c][:, k] = (plus[c] - minus[c]) / (2 * step)
+        roll_x[k] = (plus[2] - minus[2]) / (2 * step)
+    direction = np.asarray(system.layout.split_flow(p)[3])
+    start = system.layout.alpha_index - camber.size
+    p_plus, p_minus = p.copy(), p.copy()
+    p_plus[start : start + camber.size] += step * direction
+    p_minus[start : start + camber.size] -= step * direction
+    plus = outputs(x, x, p_plus, camber - step * direction)
+    minus = outputs(x, x, p_minus, camber + step * direction)
+    control = [(plus[c] - minus[c]) / (2 * step) for c in range(2)]
+    rate = system.layout.alpha_index + 3 + 2
+    p_plus, p_minus = p.copy(), p.copy()
+    p_plus[rate] += step
+    p_minus[rate] -= step
+    plus, minus = outputs(x, x, p_plus), outputs(x, x, p_minus)
+    rate_columns = [(plus[c] - minus[c]) / (2 * step) for c in range(2)]
+
+    def close(ours, theirs):
+        ours, theirs = np.atleast_2d(ours), np.atleast_2d(theirs)
+        scale = np.max(np.abs(ours), axis=-1, keepdims=True)
+        scale[scale == 0] = 1.0
+        assert np.max(np.abs(ours - theirs) / scale) < 1e-7
+
+    close(evaluation.jacobian0, columns[0])
+    close(evaluation.jacobian1, columns[1])
+    close(controls.r0, control[0])
+    close(controls.r1, control[1])
+    close(controls.rate_r0, rate_columns[0])
+    close(controls.rate_r1, rate_columns[1])
+    close(controls.roll_x, roll_x)
