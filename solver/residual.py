@@ -689,7 +689,8 @@ def build_full_span_function(layout: Layout) -> ca.Function:
     loads of a roll answer (`solver.roll`, by CasADi's forward differentiation).
 
     Outputs: r0, r1 (n,); force (3, M) [m^2 per unit q]; torque (1, M) [m^3 per unit q] about the
-    undeformed elastic axis; roll (1, M) [m^3 per unit q] (r x F) . e_x; center (3, M) [m].
+    undeformed elastic axis; roll (1, M) [m^3 per unit q] (r x F) . e_x; center (3, M) [m];
+    quarter_chord, leading_edge (3, N) [m] (`build_panel_loads_function`).
     """
     sym = _Symbols(layout)
     m = sym.m
@@ -717,6 +718,11 @@ def build_full_span_function(layout: Layout) -> ca.Function:
     tangency, loads = sym.aero(False, ind_t, ind_f)
     r0, r1 = sym.residual(tangency, loads)
     force = ca.horzcat(*[loads[c * m : (c + 1) * m] for c in range(3)]).T
+    params = _Parameters(layout)
+    z = ca.SX.sym("z", 3 * layout.n)
+    lat = params.lattice(z)
+    stations = ca.Function("stations", [z, *params.inputs], [lat.quarter_chord, lat.leading_edge])
+    quarter_chord, leading_edge = stations(sym.z, *sym.geometry_inputs)
     return ca.Function(
         f"flexwing_full_span_{_tag(layout)}",
         [sym.x, x_image, sym.p, camber_image],
@@ -727,7 +733,9 @@ def build_full_span_function(layout: Layout) -> ca.Function:
             loads[4 * m : 5 * m].T,
             loads[_ROLL * m : (_ROLL + 1) * m].T,
             center,
+            quarter_chord,
+            leading_edge,
         ],
         ["x", "x_image", "p", "camber_image"],
-        ["r0", "r1", "force", "torque", "roll", "center"],
+        ["r0", "r1", "force", "torque", "roll", "center", "quarter_chord", "leading_edge"],
     )

@@ -34,7 +34,8 @@ SOLVER_LAYERS: list[list[str]] = [
     ["equilibrium"],
     ["divergence", "recovery"],
     ["solve"],
-    ["sweep", "trim", "optimize"],
+    ["sweep", "trim", "optimize", "roll"],
+    ["effectiveness"],
     ["warm"],
     ["__init__"],
 ]

@@ -277,7 +277,7 @@ def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_d
     full_span = system.model.full_span()
 
     def outputs(right, left, p=p, image_camber=camber):
-        r0, r1, _, _, roll, _ = (np.array(v) for v in full_span(right, left, p, image_camber))
+        r0, r1, _, _, roll, *_ = (np.array(v) for v in full_span(right, left, p, image_camber))
         return r0.ravel(), r1.ravel(), 2 * float(roll.sum())
 
     step, n = 1e-6, x.size
