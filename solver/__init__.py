@@ -17,12 +17,19 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from solver.cache import CacheInfo, cache_info, clear_caches
+from solver.controls import ControlSurface
 from solver.divergence import (
     divergence_summary,
     find_fold,
     fit_divergence,
     linear_divergence,
     linear_divergence_pressure,
+)
+from solver.effectiveness import (
+    antisymmetric_divergence,
+    control_effectiveness,
+    control_sweep,
+    linear_reversal,
 )
 from solver.errors import (
     ConvergenceError,
@@ -45,18 +52,26 @@ from solver.optimize import DesignProblem, optimize, trefftz_drag
 from solver.results import (
     FINDING_CODES,
     ConstraintValue,
+    ControlEffectiveness,
+    ControlSweep,
+    ControlSweepPoint,
     DivergenceSummary,
     Equilibrium,
     Finding,
     FindingOnset,
     FitDivergence,
     Fold,
+    HingeMoment,
     LinearDivergence,
     OptimalDesign,
     OptimizerInfo,
     Panels,
     PointFailure,
+    Reversal,
+    ReversalSummary,
     RigidOptimum,
+    RollResponse,
+    RollStability,
     SolveInfo,
     Stability,
     Stations,
@@ -65,6 +80,7 @@ from solver.results import (
     SweepResult,
     Totals,
 )
+from solver.roll import roll
 from solver.solve import solve
 from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 from solver.sweep import sweep
@@ -77,6 +93,10 @@ __all__ = [
     "CacheInfo",
     "FINDING_CODES",
     "ConstraintValue",
+    "ControlEffectiveness",
+    "ControlSurface",
+    "ControlSweep",
+    "ControlSweepPoint",
     "ConvergenceError",
     "DesignProblem",
     "DivergenceSummary",
@@ -86,6 +106,7 @@ __all__ = [
     "FitDivergence",
     "FlightCondition",
     "Fold",
+    "HingeMoment",
     "InfeasibleDesign",
     "InvalidInput",
     "Layout",
@@ -96,7 +117,11 @@ __all__ = [
     "OptimizerInfo",
     "Panels",
     "PointFailure",
+    "Reversal",
+    "ReversalSummary",
     "RigidOptimum",
+    "RollResponse",
+    "RollStability",
     "SolveInfo",
     "SolverError",
     "SolverOptions",
@@ -112,15 +137,20 @@ __all__ = [
     "TubeSpar",
     "ValidityLimits",
     "Wing",
+    "antisymmetric_divergence",
     "cache_info",
     "clear_caches",
+    "control_effectiveness",
+    "control_sweep",
     "divergence_summary",
     "find_fold",
     "fit_divergence",
     "linear_divergence",
     "linear_divergence_pressure",
+    "linear_reversal",
     "optimize",
     "rigid_trim_alpha",
+    "roll",
     "solve",
     "sweep",
     "trefftz_drag",
