@@ -284,7 +284,11 @@ class CompiledModel:
                 [c.copy() for c in outputs[12:]],
             ),
         )
-        r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p = control_outputs
+        r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p, *rates = control_outputs
+        m, n = self.layout.n_panels, self.layout.n
+        loads_along, loads_control, loads_rate = (r.reshape(6, m) for r in rates[:3])
+        center_along, center_control = (r.reshape(m, 3).T for r in rates[3:5])
+        leading_edge_along, quarter_chord_along = (r.reshape(n, 3).T for r in rates[5:])
         controls = ControlTerms(
             r0_c.ravel(),
             r1_c.ravel(),
@@ -295,6 +299,13 @@ class CompiledModel:
             r0_p.ravel(),
             r1_p.ravel(),
             float(roll_p[0, 0]),
+            loads_along,
+            loads_control,
+            loads_rate,
+            center_along,
+            center_control,
+            leading_edge_along,
+            quarter_chord_along,
         )
         return evaluation, _alpha_terms(alpha_outputs), controls
 

@@ -215,26 +215,36 @@ def _index(wing: Wing, surface: int | str) -> int:
 
 @dataclass(frozen=True)
 class _Classical:
-    """Per surface, what does not depend on the flight condition: the linear reversal and the
-    linear divergence of its problem."""
+    """Per surface, what does not depend on the flight condition: its linear problem at the
+    unloaded jig (`rest`), the linear reversal and the linear divergence of its problem."""
 
+    rest: _Linear
     reversal: float | None
     divergence: float | None
 
 
-def _classical(wing: Wing, options: SolverOptions) -> list[_Classical]:
+def _classical(wing: Wing, options: SolverOptions) -> tuple[list[_Classical], float | None]:
+    """Each surface's `_Classical`, and the linear antisymmetric divergence pressure [Pa] (None
+    without ailerons: from an aileron's own evaluation at rest, which has the antisymmetric
+    Jacobians)."""
     symmetric = CoupledSystem.of(wing, 0.0, options)
     rest = at_rest(symmetric)
     symmetric_divergence = divergence_pressure(rest.evaluation, symmetric.layout, rest.beam)
-    antisymmetric = antisymmetric_divergence(wing, 1.0, options).dynamic_pressure
+    layout = symmetric.layout
+    linears = [_at_rest_linear(wing, index, options) for index in range(len(wing.control_surfaces))]
+    antisymmetric = next(
+        (
+            divergence_pressure(linear.evaluation, layout, beam)
+            for (linear, beam), surface in zip(linears, wing.control_surfaces, strict=True)
+            if not surface.symmetric
+        ),
+        None,
+    )
     out = []
-    for index, surface in enumerate(wing.control_surfaces):
-        linear, beam = _at_rest_linear(wing, index, options)
-        reversal = linear.reversal(symmetric.layout, beam)
-        out.append(
-            _Classical(reversal, symmetric_divergence if surface.symmetric else antisymmetric)
-        )
-    return out
+    for (linear, beam), surface in zip(linears, wing.control_surfaces, strict=True):
+        divergence = symmetric_divergence if surface.symmetric else antisymmetric
+        out.append(_Classical(linear, linear.reversal(layout, beam), divergence))
+    return out, antisymmetric
 
 
 def _effectiveness(
@@ -253,7 +263,11 @@ def _effectiveness(
     layout, q = system.layout, flight.dynamic_pressure
     linear = _Linear.at(system, state, aileron)
     elastic = q * linear.derivative(q) * DEG
-    rigid = q * _Linear.at(system, rigid_state, aileron).rigid_derivative(layout) * DEG
+    # The rigid wing at rest is the unloaded jig (alpha 0 on a flat wing): its problem is the
+    # classical one's, already evaluated.
+    at_rest_already = flight.alpha == 0.0 and not np.any(rigid_state)
+    rigid_linear = classical.rest if at_rest_already else _Linear.at(system, rigid_state, aileron)
+    rigid = q * rigid_linear.rigid_derivative(layout) * DEG
     local = linear.reversal(layout, beam_response(linear.evaluation, layout))
     reference = q * wing.planform_area * (2 * wing.semispan if aileron else 1.0)
     ratio = elastic / rigid if rigid != 0.0 and math.isfinite(rigid) else None
@@ -309,7 +323,7 @@ def control_effectiveness(
         raise InvalidInput("control_surfaces", "the wing has no control surfaces")
     base = without_aileron_deflections(wing)
     with numerical_failures_as(flight.velocity):
-        return _at_flight(base, flight, options, _classical(base, options))
+        return _at_flight(base, flight, options, _classical(base, options)[0])
 
 
 def control_sweep(
@@ -328,7 +342,7 @@ def control_sweep(
         raise InvalidInput("control_surfaces", "the wing has no control surfaces")
     base = without_aileron_deflections(wing)
     with numerical_failures_as(0.0):
-        classical = _classical(base, options)
+        classical, antisymmetric = _classical(base, options)
     points: list[ControlSweepPoint] = []
     for velocity in velocities:
         try:
@@ -351,7 +365,13 @@ def control_sweep(
         points=points,
         reversals=summaries,
         symmetric_divergence=_linear_divergence(base, density, options),
-        antisymmetric_divergence=antisymmetric_divergence(base, density, options),
+        antisymmetric_divergence=(
+            antisymmetric_divergence(base, density, options)
+            if antisymmetric is None
+            else LinearDivergence(
+                antisymmetric, FlightCondition.velocity_for(antisymmetric, density)
+            )
+        ),
         solver=SweepInfo(time.perf_counter() - started),
     )
 

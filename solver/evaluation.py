@@ -69,6 +69,11 @@ class ControlTerms:
     derivative along the control direction.
     Per unit roll rate p / V [rad/m]: rate_r0, rate_r1: (n,) d(r0), d(r1); roll_rate: [m^4]
     d(roll).
+    The panel loads' derivatives, (6, M) per unit q in `solver.residual`'s order (Fx, Fy, Fz,
+    Fz (r . e_s), (r x F) . e_s, (r x F) . e_x): loads_along along the model's direction
+    parameter in x, loads_control along the control, loads_rate along p / V; the force points'
+    (3, M) [m] center_along and center_control; the stations' (3, N) [m] leading_edge_along and
+    quarter_chord_along (along the direction; the camber moves neither).
     """
 
     r0: np.ndarray
@@ -80,3 +85,10 @@ class ControlTerms:
     rate_r0: np.ndarray
     rate_r1: np.ndarray
     roll_rate: float
+    loads_along: np.ndarray
+    loads_control: np.ndarray
+    loads_rate: np.ndarray
+    center_along: np.ndarray
+    center_control: np.ndarray
+    leading_edge_along: np.ndarray
+    quarter_chord_along: np.ndarray

@@ -17,8 +17,10 @@ Parameters p, in this order:
     then the image half's flow (`solver.vlm`): image (+1 the mirror, symmetric flow; -1 the
     rotation about x, antisymmetric flow), image_jacobian (the weight of the image's own
     derivatives: equal to image for the exact Jacobian), roll_rate [rad/m] (p / V, a steady
-    roll rate about x per unit airspeed), and control (N (k + 1), station-major): the
-    direction d(camber)/d(deflection) [1/rad] of the control derivatives.
+    roll rate about x per unit airspeed), control (N (k + 1), station-major): the
+    direction d(camber)/d(deflection) [1/rad] of the control derivatives, and direction (3N +
+    M): a direction in the unknowns along which the panel loads' derivative is returned (the
+    linearised loads of a roll answer, `solver.roll`).
 """
 
 from __future__ import annotations
@@ -53,7 +55,7 @@ class Layout:
 
     @property
     def n_parameters(self) -> int:
-        return 6 * self.n + 2 * self.n * (self.chordwise + 1) + 6
+        return 6 * self.n + 2 * self.n * (self.chordwise + 1) + 6 + self.n_unknowns
 
     # Unknowns
     @property
@@ -117,12 +119,16 @@ class Layout:
         image_jacobian: float = 1.0,
         roll_rate: float = 0.0,
         control: np.ndarray | None = None,
+        direction: np.ndarray | None = None,
     ) -> np.ndarray:
         """(n_parameters,) from the wing's six station arrays (y, chord, elastic_axis, EI, GJ,
         jig_twist), its camber at the chordwise nodes (N, k + 1), alpha and sweep [deg], and the
-        image's flow (module docstring; control (N, k + 1) [1/rad], default zero)."""
+        image's flow (module docstring; control (N, k + 1) [1/rad] and direction (n,), default
+        zero)."""
         if control is None:
             control = np.zeros(self.n * (self.chordwise + 1))
+        if direction is None:
+            direction = np.zeros(self.n_unknowns)
         return np.concatenate(
             [
                 *arrays,
@@ -130,6 +136,7 @@ class Layout:
                 [alpha_deg, sweep_deg, 1.0 if deformed_axis else 0.0],
                 [image, image_jacobian, roll_rate],
                 np.ravel(control),
+                np.ravel(direction),
             ]
         )
 
@@ -152,9 +159,15 @@ class Layout:
         """The image's flow in the parameter vector (symbolic or numeric): image,
         image_jacobian, roll_rate [rad/m], control (N (k + 1)) [1/rad]."""
         start = self.alpha_index + 3
-        return (
-            p[start],
-            p[start + 1],
-            p[start + 2],
-            p[start + 3 : start + 3 + self.n * (self.chordwise + 1)],
-        )
+        end = start + 3 + self.n * (self.chordwise + 1)
+        return p[start], p[start + 1], p[start + 2], p[start + 3 : end]
+
+    @property
+    def direction_slice(self) -> slice:
+        """Where the direction in the unknowns (`parameters`) sits in the parameter vector."""
+        return slice(self.n_parameters - self.n_unknowns, self.n_parameters)
+
+    @property
+    def roll_rate_index(self) -> int:
+        """Where the roll rate p / V [rad/m] sits in the parameter vector."""
+        return self.alpha_index + 5

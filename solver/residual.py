@@ -64,7 +64,7 @@ __all__ = [
 
 # Bump when the equations or the graph they are generated from change: compiled libraries on
 # disk are keyed by it.
-MODEL_VERSION = "12"
+MODEL_VERSION = "13"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s),
@@ -133,10 +133,11 @@ def _lattice_function(layout: Layout) -> ca.Function:
     outputs = [lat.left, lat.right, lat.collocation, lat.center]
     jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
     along = [ca.jtimes(ca.vec(out), params.camber, control) for out in outputs]
+    stations = [ca.jacobian(ca.vec(out), z) for out in (lat.leading_edge, lat.quarter_chord)]
     return ca.Function(
         "wing_lattice",
         [z, *params.inputs, control],
-        [*outputs, lat.normal, *jacobians, *along],
+        [*outputs, lat.normal, *jacobians, *along, *stations],
     )
 
 
@@ -388,6 +389,7 @@ class _Symbols:
             self.deformed,
         ) = layout.split(self.p)
         self.image, self.image_jacobian, self.roll_rate, self.control = layout.split_flow(self.p)
+        self.direction = self.p[layout.direction_slice]
         self.geometry_inputs = [self.y, self.chord, self.ea, self.jig, self.camber, self.sweep]
         self.beam = _Beam(layout, self.y, self.ei, self.gj, self.sweep)
         # The horseshoe of panel p induces nothing of its bound leg at its own force point.
@@ -453,8 +455,11 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     near-field drag (per unit q) and drag_x (1, n); for control surfaces r0_control, r1_control
     and lift_control along the control direction (per radian), the rolling moment (twice the
     right half's, per unit q, `_Symbols.roll`), roll_x (1, n) and roll_control; for roll
-    r0_rate, r1_rate and roll_rate, per unit roll rate p / V [rad/m]. See the module
-    docstring.
+    r0_rate, r1_rate and roll_rate, per unit roll rate p / V [rad/m]; and for a roll answer's
+    linearised loads the panel loads' derivatives (6M, see _LOADS, per unit q) along the
+    direction parameter, the control and the roll rate, and the force points' (3M) and the
+    stations' leading edges and quarter-chord points' (3N) along the direction and the
+    control (the latter two do not move with the camber). See the module docstring.
 
     The Jacobians leave as row blocks (`solver.layout`): J0's structure rows (3N, n) and
     tangency rows (M, n), J1's load rows (2(N-1), n), its only non-zero ones. CasADi stores
@@ -476,6 +481,8 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         right_c,
         collocation_c,
         center_c,
+        leading_edge_z,
+        quarter_chord_z,
     ) = sym.lattice()
     g_row = sym.circulation.T
     image = (sym.image, sym.image_jacobian)
@@ -553,6 +560,15 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         r0_along(tangency_p),
         r1_along(loads_p),
         sym.roll(loads_p),
+        # The panel loads' derivatives (a roll answer's linearised loads): along the direction
+        # parameter in x, along the control, along the roll rate; the points' likewise.
+        ca.mtimes(loads_x, sym.direction),
+        loads_c,
+        loads_p,
+        ca.mtimes(center_z, sym.direction[layout.structure]),
+        center_c,
+        ca.mtimes(leading_edge_z, sym.direction[layout.structure]),
+        ca.mtimes(quarter_chord_z, sym.direction[layout.structure]),
     ]
     outputs = [
         r0,
@@ -596,6 +612,13 @@ def build_coupled_function(layout: Layout) -> ca.Function:
             "r0_rate",
             "r1_rate",
             "roll_rate",
+            "loads_along",
+            "loads_control",
+            "loads_rate",
+            "center_along",
+            "center_control",
+            "leading_edge_along",
+            "quarter_chord_along",
         ],
     )
 

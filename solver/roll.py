@@ -461,25 +461,22 @@ def _rigid_linearised(
 def _linear_loads(
     system: CoupledSystem, x: np.ndarray, dx: np.ndarray, rate: float, q: float
 ) -> PanelLoads:
-    """The right half's panel loads' change [N, N m, m] for the antisymmetric disturbance dx
-    (the left half moving by -dx, the ailerons' camber +c on the right and -c on the left,
-    the roll rate p / V = `rate`) at the symmetric state x: the full-span model's forward
-    derivative, exact."""
-    layout, p = system.layout, system.parameters
-    camber = np.asarray(layout.split(p)[6])
-    direction = np.asarray(layout.split_flow(p)[3])
-    base = system.with_flow(Flow()).parameters
-    full_span = system.model.full_span()
-    forward = full_span.forward(1)
-    nominal = full_span(x, x, base, camber)
-    seed_p = np.zeros_like(base)
-    start = layout.alpha_index - camber.size
-    seed_p[start : start + camber.size] = direction
-    seed_p[layout.alpha_index + 5] = rate
-    _, _, force, torque, _, center, quarter_chord, leading_edge = (
-        np.array(v) for v in forward(x, x, base, camber, *nominal, dx, -dx, seed_p, -direction)
+    """The right half's panel loads' and geometry's change [N, N m, m] for the antisymmetric
+    disturbance dx at the symmetric state x (the left half moving by -dx, the ailerons' camber
+    +c on the right and -c on the left, the roll rate p / V = `rate`): the compiled model's own
+    derivatives with the image's turned (`solver.vlm`), exact; one evaluation."""
+    layout = system.layout
+    parameters = system.parameters.copy()
+    parameters[layout.direction_slice] = dx
+    _, _, terms = system.model.evaluate_with_controls(x, parameters)
+    loads = terms.loads_along + terms.loads_control + rate * terms.loads_rate
+    return PanelLoads(
+        q * loads[:3],
+        q * loads[4],
+        terms.center_along + terms.center_control,
+        terms.quarter_chord_along,
+        terms.leading_edge_along,
     )
-    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord, leading_edge)
 
 
 def _shifted(loads: PanelLoads, change: PanelLoads, sign: float) -> PanelLoads:
