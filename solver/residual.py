@@ -64,7 +64,7 @@ __all__ = [
 
 # Bump when the equations or the graph they are generated from change: compiled libraries on
 # disk are keyed by it.
-MODEL_VERSION = "13"
+MODEL_VERSION = "14"
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s),

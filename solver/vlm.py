@@ -22,6 +22,11 @@ moves opposite to it (its heave, twist and circulation the negatives of the righ
 changes), the linearisation of an antisymmetric disturbance about a symmetric equilibrium
 (`solver.roll`).
 
+The weights cost the kernel ~40 multiplications per pair (10 % of a Jacobian, measured), so
+the mapped functions choose per evaluation (`ca.Function.conditional`) between the general
+kernel and the mirror's own, written with the constant mirror and no weights: a symmetric
+model runs the same operations in the same order as before the image had parameters.
+
 The induced velocity of a unit horseshoe at a field point (Drela's form, as in AeroSandbox's
 ``calculate_induced_velocity_horseshoe``), with a = P - A, b = P - B and u = [1, 0, 0]:
 
@@ -225,6 +230,35 @@ def _image_symbols() -> tuple[ca.SX, ca.SX]:
     return ca.SX.sym("image"), ca.SX.sym("image_jacobian")
 
 
+_MIRROR = ca.DM([1.0, -1.0, 1.0])
+
+
+def _mirror_halves(
+    field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX
+) -> tuple[_Horseshoe, _Horseshoe]:
+    """`_halves` for the mirror image, its geometry constant."""
+    return (
+        _Horseshoe(field - left, field - right, weight),
+        _Horseshoe(field - _MIRROR * right, field - _MIRROR * left, 1.0),
+    )
+
+
+def _mirror_velocity(right_half: _Horseshoe, left_half: _Horseshoe) -> ca.SX:
+    """`_velocity` for the mirror image, unweighted."""
+    return (right_half.velocity() + left_half.velocity()) * _INV_4PI
+
+
+def _mirror_vertex_derivatives(
+    right_da: ca.SX, right_db: ca.SX, left_da: ca.SX, left_db: ca.SX
+) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """`_vertex_derivatives` for the mirror image with exact derivatives (m = m^-1)."""
+    mirror = ca.diag(_MIRROR)
+    d_field = right_da + right_db + left_da + left_db
+    d_left = -right_da - ca.mtimes(left_db, mirror)
+    d_right = -right_db - ca.mtimes(left_da, mirror)
+    return d_field, d_left, d_right
+
+
 def _halves(
     field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX, image: ca.SX
 ) -> tuple[_Horseshoe, _Horseshoe]:
@@ -261,8 +295,9 @@ def _vertex_derivatives(
     return d_field, d_left, d_right
 
 
-def pair_kernel() -> ca.Function:
-    """Both halves' horseshoes of one right-half panel seen from one field point.
+def pair_kernel(general: bool = True) -> ca.Function:
+    """Both halves' horseshoes of one right-half panel seen from one field point (`general`
+    False: the mirror's own kernel, which ignores image and image_jacobian).
 
     Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m],
     image, image_jacobian (1,) [-] (module docstring).
@@ -274,18 +309,25 @@ def pair_kernel() -> ca.Function:
     """
     field, weight, left, right, g = _pair_symbols()
     image, image_jacobian = _image_symbols()
-    right_half, left_half = _halves(field, weight, left, right, image)
-    d_field, d_left, d_right = _vertex_derivatives(
-        *right_half.derivatives(), *left_half.derivatives(), image, image_jacobian
-    )
-    velocity = _velocity(right_half, left_half, image)
-    influence = _velocity(right_half, left_half, image_jacobian)
+    if general:
+        right_half, left_half = _halves(field, weight, left, right, image)
+        d_field, d_left, d_right = _vertex_derivatives(
+            *right_half.derivatives(), *left_half.derivatives(), image, image_jacobian
+        )
+        velocity = _velocity(right_half, left_half, image)
+        influence = _velocity(right_half, left_half, image_jacobian)
+    else:
+        right_half, left_half = _mirror_halves(field, weight, left, right)
+        d_field, d_left, d_right = _mirror_vertex_derivatives(
+            *right_half.derivatives(), *left_half.derivatives()
+        )
+        velocity = influence = _mirror_velocity(right_half, left_half)
     scaled = g * _INV_4PI
     outputs = ca.cse(
         [velocity, influence, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T]
     )
     return ca.Function(
-        "vlm_pair",
+        "vlm_pair" if general else "vlm_mirror_pair",
         [field, weight, left, right, g, image, image_jacobian],
         outputs,
         ["field", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
@@ -293,7 +335,7 @@ def pair_kernel() -> ca.Function:
     )
 
 
-def normal_pair_kernel() -> ca.Function:
+def normal_pair_kernel(general: bool = True) -> ca.Function:
     """`pair_kernel` seen along a field point's unit normal n: what flow tangency needs.
 
     Tangency reads only n . v, so its derivatives are rows n^T dv (1, 3) instead of 3 x 3
@@ -311,26 +353,44 @@ def normal_pair_kernel() -> ca.Function:
     field, weight, left, right, g = _pair_symbols()
     normal = ca.SX.sym("normal", 3)
     image, image_jacobian = _image_symbols()
-    right_half, left_half = _halves(field, weight, left, right, image)
-    d_field, d_left, d_right = _vertex_derivatives(
-        *right_half.normal_derivatives(normal),
-        *left_half.normal_derivatives(normal),
-        image,
-        image_jacobian,
-    )
-    velocity = _velocity(right_half, left_half, image)
-    influence = _velocity(right_half, left_half, image_jacobian)
+    if general:
+        right_half, left_half = _halves(field, weight, left, right, image)
+        d_field, d_left, d_right = _vertex_derivatives(
+            *right_half.normal_derivatives(normal),
+            *left_half.normal_derivatives(normal),
+            image,
+            image_jacobian,
+        )
+        velocity = _velocity(right_half, left_half, image)
+        influence = _velocity(right_half, left_half, image_jacobian)
+    else:
+        right_half, left_half = _mirror_halves(field, weight, left, right)
+        d_field, d_left, d_right = _mirror_vertex_derivatives(
+            *right_half.normal_derivatives(normal), *left_half.normal_derivatives(normal)
+        )
+        velocity = influence = _mirror_velocity(right_half, left_half)
     scaled = g * _INV_4PI
     outputs = ca.cse(
         [velocity, ca.dot(normal, influence), scaled * d_field, scaled * d_left, scaled * d_right]
     )
     return ca.Function(
-        "vlm_normal_pair",
+        "vlm_normal_pair" if general else "vlm_mirror_normal_pair",
         [field, weight, left, right, g, normal, image, image_jacobian],
         outputs,
         ["field", "bound_weight", "left", "right", "g", "normal", "image", "image_jacobian"],
         ["velocity", "normal_influence", "g_dfield", "g_dleft", "g_dright"],
     )
+
+
+def _selected(kernel, name: str) -> ca.Function:  # type: ignore[no-untyped-def]
+    """kernel(general) for image weights other than the mirror's exact ones, else the mirror's
+    own: one Function whose first input says which (1: the mirror's)."""
+    return ca.Function.conditional(name, [kernel(True)], kernel(False))
+
+
+def mirror_selector(image: ca.MX, image_jacobian: ca.MX) -> ca.MX:
+    """1 where the image is the mirror with exact derivatives (its own kernel serves), else 0."""
+    return ca.logic_and(image == 1, image_jacobian == 1)
 
 
 def _column_symbols(m: int) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX, ca.MX]:
@@ -371,13 +431,14 @@ def normal_source_columns(n_panels: int) -> ca.Function:
             right_k).
     """
     m = n_panels
-    pair = normal_pair_kernel()
+    pair = _selected(normal_pair_kernel, "vlm_normal_pair_selected")
     field, weight, left, right, g = _column_symbols(m)
     normal = ca.MX.sym("normal", 3, m)
     image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
-    over_fields = pair.map("vlm_normal_over_fields", "serial", m, [2, 3, 4, 6, 7], [])
+    mirror = mirror_selector(image, image_jacobian)
+    over_fields = pair.map("vlm_normal_over_fields", "serial", m, [0, 3, 4, 5, 7, 8], [])
     velocity, normal_influence, g_dfield, g_dleft, g_dright = over_fields(
-        field, weight.T, left, right, g, normal, image, image_jacobian
+        mirror, field, weight.T, left, right, g, normal, image, image_jacobian
     )
     column = ca.Function(
         "vlm_normal_column",
@@ -423,13 +484,14 @@ def source_columns(n_panels: int) -> ca.Function:
         g_dleft, g_dright (3M, 3M): g_k d v_ik / d left_k, column 3 k + d (likewise right_k).
     """
     m = n_panels
-    pair = pair_kernel()
+    pair = _selected(pair_kernel, "vlm_pair_selected")
     field, weight, left, right, g = _column_symbols(m)
     image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
+    mirror = mirror_selector(image, image_jacobian)
     # Inner map: one source against all field points (source inputs shared).
-    over_fields = pair.map("vlm_over_fields", "serial", m, [2, 3, 4, 5, 6], [])
+    over_fields = pair.map("vlm_over_fields", "serial", m, [0, 3, 4, 5, 6, 7], [])
     velocity, influence, g_dfield, g_dleft, g_dright = over_fields(
-        field, weight.T, left, right, g, image, image_jacobian
+        mirror, field, weight.T, left, right, g, image, image_jacobian
     )
     column = ca.Function(
         "vlm_column",
@@ -469,19 +531,29 @@ def induced_velocities(n_panels: int, with_image: bool = True) -> ca.Function:
     m = n_panels
     field, weight, left, right, g = _pair_symbols()
     image = ca.SX.sym("image")
-    right_half, left_half = _halves(field, weight, left, right, image)
-    if with_image:
-        velocity = _velocity(right_half, left_half, image)
-    else:
-        velocity = right_half.velocity() * _INV_4PI
-    pair = ca.Function("vlm_pair_value", [field, weight, left, right, g, image], [g * velocity])
-    over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4, 5], [])
+
+    def value_kernel(general: bool) -> ca.Function:
+        if not with_image:
+            velocity = _Horseshoe(field - left, field - right, weight).velocity() * _INV_4PI
+        elif general:
+            velocity = _velocity(*_halves(field, weight, left, right, image), image)
+        else:
+            velocity = _mirror_velocity(*_mirror_halves(field, weight, left, right))
+        return ca.Function(
+            "vlm_pair_value" if general else "vlm_mirror_pair_value",
+            [field, weight, left, right, g, image],
+            [g * velocity],
+        )
+
+    pair = _selected(value_kernel, "vlm_pair_value_selected")
+    over_fields = pair.map("vlm_value_over_fields", "serial", m, [0, 3, 4, 5, 6], [])
     field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
     image_mx = ca.MX.sym("image")
+    mirror = image_mx == 1
     column = ca.Function(
         "vlm_value_column",
         [field_mx, weight_mx, left_mx, right_mx, g_mx, image_mx],
-        [ca.vec(over_fields(field_mx, weight_mx.T, left_mx, right_mx, g_mx, image_mx))],
+        [ca.vec(over_fields(mirror, field_mx, weight_mx.T, left_mx, right_mx, g_mx, image_mx))],
     )
     over_sources = column.map("vlm_value_over_sources", "serial", m, [0, 5], [0])
     field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
