@@ -46,7 +46,7 @@ from solver.evaluation import AlphaTerms, ControlTerms, Evaluation
 from solver.geometry import DEG
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import at_rest
-from solver.loads import panel_loads
+from solver.loads import flow_panel_loads
 from solver.results import (
     ControlEffectiveness,
     ControlSweep,
@@ -292,7 +292,7 @@ def _at_flight(
     equilibrium = solve(wing, flight, options=options)
     symmetric = CoupledSystem.of(wing, flight.alpha, options)
     rigid_state = at_rest(symmetric).rigid_state(flight.alpha)
-    loads = panel_loads(symmetric, equilibrium.state, flight.dynamic_pressure)
+    loads = flow_panel_loads(symmetric, equilibrium.state, flight.dynamic_pressure)
     hinges = hinge_moments(wing, loads, options.chordwise_panels)
     return [
         _effectiveness(

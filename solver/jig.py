@@ -81,7 +81,7 @@ def _evaluate_at_rest(system: CoupledSystem) -> AtRest:
 
 def at_rest(system: CoupledSystem) -> AtRest:
     """The wing of `system` at rest (cached per wing and model; alpha plays no part)."""
-    key = ("at_rest", system.wing.key, system.chordwise, system.deformed_axis)
+    key = ("at_rest", *system.model_key)
     return cached(key, lambda: _evaluate_at_rest(system), lambda r: r.nbytes)
 
 
@@ -134,7 +134,7 @@ def linear_pressure(system: CoupledSystem) -> float | None:
 
     Linearised about the undeformed wing carrying no circulation: the classical problem (for an
     uncambered, untwisted wing it is the jig at alpha = 0)."""
-    key = ("linear_divergence", system.wing.key, system.chordwise, system.deformed_axis)
+    key = ("linear_divergence", *system.model_key)
     try:
         rest = at_rest(system)
     except np.linalg.LinAlgError:

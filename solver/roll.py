@@ -40,7 +40,14 @@ from solver.evaluation import Evaluation
 from solver.geometry import DEG, chordwise_nodes
 from solver.inputs import FlightCondition, SolverOptions, Wing
 from solver.jig import at_rest, jig
-from solver.loads import PanelLoads, RigidLoads, equilibrium_loads, outboard_sum, panel_loads
+from solver.loads import (
+    PanelLoads,
+    RigidLoads,
+    equilibrium_loads,
+    flow_panel_loads,
+    outboard_sum,
+    panel_loads,
+)
 from solver.newton import newton
 from solver.path import PathSettings, follow
 from solver.results import (
@@ -409,7 +416,7 @@ def _linearised(
     antisymmetric = _antisymmetric_parts(
         system, x_s, dx, antisymmetric_loads, rigid_antisymmetric, q, symmetric.panels
     )
-    symmetric_loads = panel_loads(system.with_flow(Flow()), x_s, q)
+    symmetric_loads = flow_panel_loads(system, x_s, q)  # with the leading edges
     return _response(
         wing,
         flight,
@@ -480,7 +487,9 @@ def _linear_loads(
 
 
 def _shifted(loads: PanelLoads, change: PanelLoads, sign: float) -> PanelLoads:
-    """loads + sign * change: a wing's loads and geometry, linearised."""
+    """loads + sign * change: a wing's loads and geometry, linearised (both with leading
+    edges)."""
+    assert loads.leading_edge is not None and change.leading_edge is not None
     return PanelLoads(
         loads.force + sign * change.force,
         loads.torque + sign * change.torque,
@@ -549,6 +558,8 @@ def hinge_moments(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
     strips the surface covers (each weighted by the share of its span covered), trailing edge
     down positive. The hinge line of a strip runs between its stations' hinge points, at the
     hinge's fraction of the chord along each deformed chord line."""
+    if loads.leading_edge is None:
+        raise ValueError("hinge moments need the flow model's panel loads (leading edges)")
     chord_axis = (loads.quarter_chord - loads.leading_edge) / (0.25 * wing.chord)
     moments = np.zeros(len(wing.control_surfaces))
     for index, surface in enumerate(wing.control_surfaces):

@@ -83,19 +83,22 @@ class CoupledSystem:
         return cls(wing, alpha, options.chordwise_panels, options.torque_axis == "deformed", flow)
 
     def with_flow(self, flow: Flow) -> CoupledSystem:
-        """The same wing, alpha and model with another `flow`."""
+        """The same wing and alpha with another `flow`."""
         return CoupledSystem(self.wing, self.alpha, self.chordwise, self.deformed_axis, flow)
 
     def at_alpha(self, alpha: float) -> CoupledSystem:
         """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
         model and every other parameter: a trimmed solve changes alpha at every iteration)."""
         other = CoupledSystem(self.wing, alpha, self.chordwise, self.deformed_axis, self.flow)
-        parameters = self.parameters.copy()
-        parameters[self.layout.alpha_index] = alpha
-        other.__dict__["parameters"] = parameters
+        for name in ("parameters", "flow_parameters"):
+            if name == "parameters" or name in self.__dict__:
+                parameters = getattr(self, name).copy()
+                parameters[self.layout.alpha_index] = alpha
+                other.__dict__[name] = parameters
         other.__dict__["layout"] = self.layout
-        if "model" in self.__dict__:
-            other.__dict__["model"] = self.__dict__["model"]
+        for name in ("model", "flow_model"):
+            if name in self.__dict__:
+                other.__dict__[name] = self.__dict__[name]
         return other
 
     @cached_property
@@ -104,17 +107,39 @@ class CoupledSystem:
 
     @cached_property
     def model(self) -> CompiledModel:
+        """The mesh's model: the symmetric one for the symmetric flow, else its flow model."""
         # Looked up once per system (a system lives for one request): the model swaps compiled
         # code in by itself, and `model_for` picks up a library another process compiled.
-        return model_for(self.layout)
+        return self.flow_model if self.flow != SYMMETRIC else model_for(self.layout)
+
+    @cached_property
+    def flow_model(self) -> CompiledModel:
+        """The mesh's flow model (`solver.compiled`), whatever the flow."""
+        return model_for(self.layout, flow=True)
 
     @cached_property
     def parameters(self) -> np.ndarray:
-        """(n_parameters,) the model's parameter vector, read-only. Kept in the solver's cache:
-        a request builds a new system, and assembling the vector costs ~0.05 ms at N = 30."""
+        """(n_parameters,) the parameter vector of `model`, read-only. Kept in the solver's
+        cache: a request builds a new system, and assembling the vector costs ~0.05 ms at N =
+        30."""
+        if self.flow != SYMMETRIC:
+            return self.flow_parameters
         return cached(("parameters", *self.key), self._assemble_parameters, _nbytes)
 
+    @cached_property
+    def flow_parameters(self) -> np.ndarray:
+        """The flow model's parameter vector (`solver.layout`), read-only."""
+        return cached(("flow_parameters", *self.key), self._assemble_flow_parameters, _nbytes)
+
     def _assemble_parameters(self) -> np.ndarray:
+        camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
+        parameters = self.layout.parameters(
+            self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
+        )
+        parameters.setflags(write=False)
+        return parameters
+
+    def _assemble_flow_parameters(self) -> np.ndarray:
         wing, flow, nodes = self.wing, self.flow, chordwise_nodes(self.chordwise)
         camber = wing.camber_at(nodes)
         if flow.image < 0:  # the right half as it is: its ailerons deflected too
@@ -132,19 +157,25 @@ class CoupledSystem:
                 ),
                 np.zeros((wing.n_stations, self.chordwise + 1)),
             )
-        parameters = self.layout.parameters(
-            wing.arrays(),
-            camber,
-            self.alpha,
-            wing.sweep,
-            self.deformed_axis,
-            flow.image,
-            flow.image_jacobian,
-            flow.roll_rate,
-            control,
+        parameters = np.concatenate(
+            [
+                self.layout.parameters(
+                    wing.arrays(), camber, self.alpha, wing.sweep, self.deformed_axis
+                ),
+                self.layout.flow_parameters(
+                    flow.image, flow.image_jacobian, flow.roll_rate, control
+                ),
+            ]
         )
         parameters.setflags(write=False)
         return parameters
+
+    @property
+    def model_key(self) -> tuple:  # type: ignore[type-arg]
+        """The identity of the wing as modelled, whatever the alpha: what the wing at rest and
+        its linear divergence are cached by (the flow's only when it is not the symmetric)."""
+        key = (self.wing.key, self.chordwise, self.deformed_axis)
+        return key if self.flow == SYMMETRIC else (*key, self.flow.key)
 
     @property
     def key(self) -> tuple:  # type: ignore[type-arg]
@@ -167,11 +198,16 @@ class CoupledSystem:
         return self.model.residual_with_lift(x, self.parameters)
 
     def evaluate_with_controls(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
-        return self.model.evaluate_with_controls(x, self.parameters)
+        """The flow model's evaluation at x, with what control surfaces and roll add."""
+        return self.flow_model.evaluate_with_controls(x, self.flow_parameters)
 
     def residual_with_roll(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) and the rolling moment per unit q [m^3] at x (`ControlTerms.roll`)."""
-        return self.model.residual_with_roll(x, self.parameters)
+        return self.flow_model.residual_with_roll(x, self.flow_parameters)
+
+    def flow_panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
+        """The flow model's `panel_loads` (with the stations' leading edges)."""
+        return self.flow_model.panel_loads(x, self.flow_parameters)
 
     def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord

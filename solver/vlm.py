@@ -1,31 +1,10 @@
-"""Horseshoe vortex lattice of a wing and its image: the O(N^2) part of the model, as one small
-kernel.
+"""Horseshoe vortex lattice of a symmetric wing: the O(N^2) part of the model, as one small kernel.
 
 Each right-half panel k carries a horseshoe vortex of strength Gamma_k = V g_k: a bound leg from its
 inboard quarter-chord vertex A to its outboard vertex B, and two trailing legs running to +x
 infinity (geometry axes, not along the freestream: AeroSandbox's default). The left half is the
-image of the right half under T = diag(1, -1, s), its horseshoe running from T(B) to T(A) with
-strength s Gamma_k (the `image` input s):
-
-- s = +1, T the mirror in y: the symmetric flow of a symmetric wing (the left half's circulation
-  equals the right half's);
-- s = -1, T the rotation by 180 deg about x: the exactly antisymmetric flow (an aileron, a roll
-  rate) of a wing whose sections are symmetric in z, at zero incidence. A rotated filament with
-  the same circulation induces R v(R^-1 P) (vorticity is a pseudovector), which is the horseshoe
-  from T(A) to T(B), i.e. -1 times the one from T(B) to T(A).
-
-`image_jacobian` weights the image's part of the derivatives in its own vertices and circulation
-(its part at the field point keeps the weight s of its value). Equal to s, the derivatives are
-exact. With s = +1 and image_jacobian = -1 at a symmetric state they are the antisymmetric block of
-the full-span Jacobian there: the derivatives of the right half's equations when the left half
-moves opposite to it (its heave, twist and circulation the negatives of the right half's
-changes), the linearisation of an antisymmetric disturbance about a symmetric equilibrium
-(`solver.roll`).
-
-The weights cost the kernel ~40 multiplications per pair (10 % of a Jacobian, measured), so
-the mapped functions choose per evaluation (`ca.Function.conditional`) between the general
-kernel and the mirror's own, written with the constant mirror and no weights: a symmetric
-model runs the same operations in the same order as before the image had parameters.
+mirror image in y with the same circulation, so its horseshoe runs from m(B) to m(A),
+m = diag(1, -1, 1).
 
 The induced velocity of a unit horseshoe at a field point (Drela's form, as in AeroSandbox's
 ``calculate_induced_velocity_horseshoe``), with a = P - A, b = P - B and u = [1, 0, 0]:
@@ -38,7 +17,27 @@ input masks it exactly (AeroSandbox's 1e-8 m core radius gives the same numbers)
 
 `pair_kernel` returns the velocity and its exact derivatives with respect to the three points, so
 the full Jacobian of the coupled residual is assembled from O(N^2) kernel values by the chain
-rule instead of by differentiating through a dense O(N^2) expression graph. Flow tangency reads
+rule instead of by differentiating through a dense O(N^2) expression graph.
+
+The image as a parameter (`flow_*`, for control surfaces and roll): the left half is then the
+image of the right half under T = diag(1, -1, s), its horseshoe running from T(B) to T(A) with
+strength s Gamma_k (the `image` input s):
+
+- s = +1, T the mirror in y: the symmetric flow above;
+- s = -1, T the rotation by 180 deg about x: the exactly antisymmetric flow (an aileron, a roll
+  rate) of a wing whose sections are symmetric in z, at zero incidence. A rotated filament with
+  the same circulation induces R v(R^-1 P) (vorticity is a pseudovector), which is the horseshoe
+  from T(A) to T(B), i.e. -1 times the one from T(B) to T(A).
+
+`image_jacobian` weights the image's part of the derivatives in its own vertices and circulation
+(its part at the field point keeps the weight s of its value). Equal to s, the derivatives are
+exact. With s = +1 and image_jacobian = -1 at a symmetric state they are the antisymmetric block
+of the full-span Jacobian there: the derivatives of the right half's equations when the left half
+moves opposite to it (its heave, twist and circulation the negatives of the right half's
+changes), the linearisation of an antisymmetric disturbance about a symmetric equilibrium
+(`solver.roll`). The weights cost the kernel ~40 multiplications per pair, ~10 % of a Jacobian:
+the symmetric model keeps the kernels above, and the flow kernels are separate functions (the
+flow model's, `solver.residual`). Flow tangency reads
 only the normal component n . v at a collocation point: `normal_pair_kernel` gives it and its
 derivatives as rows, a third of the derivative work of the full kernel.
 
@@ -55,6 +54,11 @@ import casadi as ca
 import numpy as np
 
 __all__ = [
+    "flow_induced_velocities",
+    "flow_normal_pair_kernel",
+    "flow_normal_source_columns",
+    "flow_pair_kernel",
+    "flow_source_columns",
     "horseshoe_velocity",
     "induced_velocities",
     "normal_pair_kernel",
@@ -63,10 +67,7 @@ __all__ = [
     "source_columns",
 ]
 
-
-def _image_of(point: ca.SX, image: ca.SX) -> ca.SX:
-    """T(point) = diag(1, -1, image) point."""
-    return ca.vertcat(point[0], -point[1], image * point[2])
+_MIRROR = ca.DM([1.0, -1.0, 1.0])
 
 
 def _cross(a: ca.SX, b: ca.SX) -> ca.SX:
@@ -224,34 +225,28 @@ def _pair_symbols() -> tuple[ca.SX, ca.SX, ca.SX, ca.SX, ca.SX]:
     )
 
 
-def _image_symbols() -> tuple[ca.SX, ca.SX]:
-    """The image's sign s (its geometry T = diag(1, -1, s) and the weight of its value) and the
-    weight of its derivatives in its own vertices and circulation (module docstring)."""
-    return ca.SX.sym("image"), ca.SX.sym("image_jacobian")
-
-
-_MIRROR = ca.DM([1.0, -1.0, 1.0])
-
-
-def _mirror_halves(
+def _halves(
     field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX
 ) -> tuple[_Horseshoe, _Horseshoe]:
-    """`_halves` for the mirror image, its geometry constant."""
+    """The right half's horseshoe at `field` (its bound leg weighted) and its mirror image on
+    the left half, which runs from m(right) to m(left)."""
     return (
         _Horseshoe(field - left, field - right, weight),
         _Horseshoe(field - _MIRROR * right, field - _MIRROR * left, 1.0),
     )
 
 
-def _mirror_velocity(right_half: _Horseshoe, left_half: _Horseshoe) -> ca.SX:
-    """`_velocity` for the mirror image, unweighted."""
+def _velocity(right_half: _Horseshoe, left_half: _Horseshoe) -> ca.SX:
+    """(3,) [-] both halves' induced velocity per unit g (their 4 pi v summed, divided by 4 pi)."""
     return (right_half.velocity() + left_half.velocity()) * _INV_4PI
 
 
-def _mirror_vertex_derivatives(
+def _vertex_derivatives(
     right_da: ca.SX, right_db: ca.SX, left_da: ca.SX, left_db: ca.SX
 ) -> tuple[ca.SX, ca.SX, ca.SX]:
-    """`_vertex_derivatives` for the mirror image with exact derivatives (m = m^-1)."""
+    """d/d(field), d/d(left), d/d(right) of both halves from their derivatives in a = field -
+    first vertex and b = field - second vertex. The left half's vertices are mirrored
+    (m = m^-1): its a moves with m(right), its b with m(left)."""
     mirror = ca.diag(_MIRROR)
     d_field = right_da + right_db + left_da + left_db
     d_left = -right_da - ca.mtimes(left_db, mirror)
@@ -259,138 +254,63 @@ def _mirror_vertex_derivatives(
     return d_field, d_left, d_right
 
 
-def _halves(
-    field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX, image: ca.SX
-) -> tuple[_Horseshoe, _Horseshoe]:
-    """The right half's horseshoe at `field` (its bound leg weighted) and its image on the left
-    half, which runs from T(right) to T(left) (its weight s is the caller's)."""
-    return (
-        _Horseshoe(field - left, field - right, weight),
-        _Horseshoe(field - _image_of(right, image), field - _image_of(left, image), 1.0),
-    )
+def pair_kernel() -> ca.Function:
+    """Both halves' horseshoes of one right-half panel seen from one field point.
 
-
-def _velocity(right_half: _Horseshoe, left_half: _Horseshoe, weight: ca.SX) -> ca.SX:
-    """(3,) [-] both halves' induced velocity per unit g, the image's weighted (their 4 pi v
-    summed, divided by 4 pi)."""
-    return (right_half.velocity() + weight * left_half.velocity()) * _INV_4PI
-
-
-def _vertex_derivatives(
-    right_da: ca.SX,
-    right_db: ca.SX,
-    left_da: ca.SX,
-    left_db: ca.SX,
-    image: ca.SX,
-    image_jacobian: ca.SX,
-) -> tuple[ca.SX, ca.SX, ca.SX]:
-    """d/d(field), d/d(left), d/d(right) of both halves from their derivatives in a = field -
-    first vertex and b = field - second vertex. The image's vertices are T(right), T(left)
-    (T = T^-1): its a moves with T(right), its b with T(left); its part in them is weighted
-    `image_jacobian`, its part at the field point `image`."""
-    transform = ca.diag(ca.vertcat(1, -1, image))
-    d_field = right_da + right_db + image * (left_da + left_db)
-    d_left = -right_da - image_jacobian * ca.mtimes(left_db, transform)
-    d_right = -right_db - image_jacobian * ca.mtimes(left_da, transform)
-    return d_field, d_left, d_right
-
-
-def pair_kernel(general: bool = True) -> ca.Function:
-    """Both halves' horseshoes of one right-half panel seen from one field point (`general`
-    False: the mirror's own kernel, which ignores image and image_jacobian).
-
-    Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m],
-    image, image_jacobian (1,) [-] (module docstring).
+    Inputs: field (3,) [m], bound_weight (1,) [-], left (3,) [m], right (3,) [m], g (1,) [m].
     Outputs, all per unit V:
         velocity (3,) [-]: induced velocity per unit g.
-        influence (3,) [-]: d(g velocity)/dg, the image's part weighted image_jacobian.
         g_dfield (3, 3): g * d(velocity)/d(field), transposed ([d, c] = d v_c / d field_d).
         g_dleft, g_dright (3, 3): the same for the two bound-vortex vertices.
     """
     field, weight, left, right, g = _pair_symbols()
-    image, image_jacobian = _image_symbols()
-    if general:
-        right_half, left_half = _halves(field, weight, left, right, image)
-        d_field, d_left, d_right = _vertex_derivatives(
-            *right_half.derivatives(), *left_half.derivatives(), image, image_jacobian
-        )
-        velocity = _velocity(right_half, left_half, image)
-        influence = _velocity(right_half, left_half, image_jacobian)
-    else:
-        right_half, left_half = _mirror_halves(field, weight, left, right)
-        d_field, d_left, d_right = _mirror_vertex_derivatives(
-            *right_half.derivatives(), *left_half.derivatives()
-        )
-        velocity = influence = _mirror_velocity(right_half, left_half)
+    right_half, left_half = _halves(field, weight, left, right)
+    d_field, d_left, d_right = _vertex_derivatives(
+        *right_half.derivatives(), *left_half.derivatives()
+    )
+    velocity = _velocity(right_half, left_half)
     scaled = g * _INV_4PI
-    outputs = ca.cse(
-        [velocity, influence, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T]
-    )
+    outputs = ca.cse([velocity, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T])
     return ca.Function(
-        "vlm_pair" if general else "vlm_mirror_pair",
-        [field, weight, left, right, g, image, image_jacobian],
+        "vlm_pair",
+        [field, weight, left, right, g],
         outputs,
-        ["field", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
-        ["velocity", "influence", "g_dfield", "g_dleft", "g_dright"],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["velocity", "g_dfield", "g_dleft", "g_dright"],
     )
 
 
-def normal_pair_kernel(general: bool = True) -> ca.Function:
+def normal_pair_kernel() -> ca.Function:
     """`pair_kernel` seen along a field point's unit normal n: what flow tangency needs.
 
     Tangency reads only n . v, so its derivatives are rows n^T dv (1, 3) instead of 3 x 3
     blocks: a third of the kernel's derivative work and of the O(M^2) chain rule after it.
 
     Inputs: field, bound_weight, left, right, g as `pair_kernel`; normal (3,) [-], held
-    constant (how the normal itself moves with the geometry is the caller's part); image,
-    image_jacobian as `pair_kernel`.
+    constant (how the normal itself moves with the geometry is the caller's part).
     Outputs, per unit V:
         velocity (3,) [-]: induced velocity per unit g.
-        normal_influence (1,) [-]: n . d(g velocity)/dg (the image's part weighted
-            image_jacobian).
+        normal_velocity (1,) [-]: n . velocity.
         g_dfield, g_dleft, g_dright (1, 3): g n^T d(velocity)/d(point).
     """
     field, weight, left, right, g = _pair_symbols()
     normal = ca.SX.sym("normal", 3)
-    image, image_jacobian = _image_symbols()
-    if general:
-        right_half, left_half = _halves(field, weight, left, right, image)
-        d_field, d_left, d_right = _vertex_derivatives(
-            *right_half.normal_derivatives(normal),
-            *left_half.normal_derivatives(normal),
-            image,
-            image_jacobian,
-        )
-        velocity = _velocity(right_half, left_half, image)
-        influence = _velocity(right_half, left_half, image_jacobian)
-    else:
-        right_half, left_half = _mirror_halves(field, weight, left, right)
-        d_field, d_left, d_right = _mirror_vertex_derivatives(
-            *right_half.normal_derivatives(normal), *left_half.normal_derivatives(normal)
-        )
-        velocity = influence = _mirror_velocity(right_half, left_half)
+    right_half, left_half = _halves(field, weight, left, right)
+    d_field, d_left, d_right = _vertex_derivatives(
+        *right_half.normal_derivatives(normal), *left_half.normal_derivatives(normal)
+    )
+    velocity = _velocity(right_half, left_half)
     scaled = g * _INV_4PI
     outputs = ca.cse(
-        [velocity, ca.dot(normal, influence), scaled * d_field, scaled * d_left, scaled * d_right]
+        [velocity, ca.dot(normal, velocity), scaled * d_field, scaled * d_left, scaled * d_right]
     )
     return ca.Function(
-        "vlm_normal_pair" if general else "vlm_mirror_normal_pair",
-        [field, weight, left, right, g, normal, image, image_jacobian],
+        "vlm_normal_pair",
+        [field, weight, left, right, g, normal],
         outputs,
-        ["field", "bound_weight", "left", "right", "g", "normal", "image", "image_jacobian"],
-        ["velocity", "normal_influence", "g_dfield", "g_dleft", "g_dright"],
+        ["field", "bound_weight", "left", "right", "g", "normal"],
+        ["velocity", "normal_velocity", "g_dfield", "g_dleft", "g_dright"],
     )
-
-
-def _selected(kernel, name: str) -> ca.Function:  # type: ignore[no-untyped-def]
-    """kernel(general) for image weights other than the mirror's exact ones, else the mirror's
-    own: one Function whose first input says which (1: the mirror's)."""
-    return ca.Function.conditional(name, [kernel(True)], kernel(False))
-
-
-def mirror_selector(image: ca.MX, image_jacobian: ca.MX) -> ca.MX:
-    """1 where the image is the mirror with exact derivatives (its own kernel serves), else 0."""
-    return ca.logic_and(image == 1, image_jacobian == 1)
 
 
 def _column_symbols(m: int) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX, ca.MX]:
@@ -421,47 +341,42 @@ def normal_source_columns(n_panels: int) -> ca.Function:
     """`source_columns` along the field points' normals (flow tangency's view).
 
     Inputs: field (3, M) [m], normal (3, M) [-] (the field points' unit normals), then
-    bound_weight, left, right, g, image and image_jacobian as `source_columns`.
+    bound_weight, left, right and g as `source_columns`.
     Outputs, per unit V (field point i, source k):
         induced (3M, 1) [-]: sum_k g_k v_ik, rows 3 i + c (the full vector).
-        influence (M, M) [-]: n_i . v_ik, column k (per unit g_k): the influence matrix (the
-            image's part weighted image_jacobian).
+        influence (M, M) [-]: n_i . v_ik, column k (per unit g_k): the influence matrix.
         g_dfield (M, 3): sum_k g_k n_i^T d v_ik / d field_i, column d.
         g_dleft, g_dright (M, 3M): g_k n_i^T d v_ik / d left_k, column 3 k + d (likewise
             right_k).
     """
     m = n_panels
-    pair = _selected(normal_pair_kernel, "vlm_normal_pair_selected")
+    pair = normal_pair_kernel()
     field, weight, left, right, g = _column_symbols(m)
     normal = ca.MX.sym("normal", 3, m)
-    image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
-    mirror = mirror_selector(image, image_jacobian)
-    over_fields = pair.map("vlm_normal_over_fields", "serial", m, [0, 3, 4, 5, 7, 8], [])
-    velocity, normal_influence, g_dfield, g_dleft, g_dright = over_fields(
-        mirror, field, weight.T, left, right, g, normal, image, image_jacobian
+    over_fields = pair.map("vlm_normal_over_fields", "serial", m, [2, 3, 4], [])
+    velocity, normal_velocity, g_dfield, g_dleft, g_dright = over_fields(
+        field, weight.T, left, right, g, normal
     )
     column = ca.Function(
         "vlm_normal_column",
-        [field, normal, weight, left, right, g, image, image_jacobian],
+        [field, normal, weight, left, right, g],
         [
             g * ca.vec(velocity),
-            normal_influence.T,
+            normal_velocity.T,
             ca.reshape(g_dfield, 3, m).T,
             ca.reshape(g_dleft, 3, m).T,
             ca.reshape(g_dright, 3, m).T,
         ],
     )
-    # All sources: field points, normals and the image's weights shared, the g-weighted sums
-    # reduced.
-    over_sources = column.map("vlm_normal_over_sources", "serial", m, [0, 1, 6, 7], [0, 2])
+    # All sources: field points and normals shared, the g-weighted sums reduced.
+    over_sources = column.map("vlm_normal_over_sources", "serial", m, [0, 1], [0, 2])
     field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     normal_all = ca.MX.sym("normal", 3, m)
-    inputs = [field_all, normal_all, weight_all, left_all, right_all, g_all]
     return ca.Function(
         "vlm_normal_sources",
-        [*inputs, image, image_jacobian],
-        list(over_sources(*inputs, image, image_jacobian)),
-        ["field", "normal", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
+        [field_all, normal_all, weight_all, left_all, right_all, g_all],
+        list(over_sources(field_all, normal_all, weight_all, left_all, right_all, g_all)),
+        ["field", "normal", "bound_weight", "left", "right", "g"],
         ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
     )
 
@@ -474,45 +389,243 @@ def source_columns(n_panels: int) -> ca.Function:
         bound_weight (M, M) [-]: column k holds the weights the field points see for source k.
         left, right (3, M) [m]: source bound-vortex vertices.
         g (1, M) [m]: source circulations per unit V.
-        image, image_jacobian (1,) [-]: the image's sign and derivative weight (module
-            docstring).
     Outputs, rows indexed 3 i + c (field point i, velocity component c), per unit V:
         induced (3M, 1) [-]: sum_k g_k v_ik, the induced velocity at each field point.
-        influence (3M, M) [-]: v_ik, column k (per unit g_k; the image's part weighted
-            image_jacobian).
+        influence (3M, M) [-]: v_ik, column k (per unit g_k).
         g_dfield (3M, 3): sum_k g_k d v_ik / d field_i, column d.
         g_dleft, g_dright (3M, 3M): g_k d v_ik / d left_k, column 3 k + d (likewise right_k).
     """
     m = n_panels
-    pair = _selected(pair_kernel, "vlm_pair_selected")
+    pair = pair_kernel()
     field, weight, left, right, g = _column_symbols(m)
-    image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
-    mirror = mirror_selector(image, image_jacobian)
     # Inner map: one source against all field points (source inputs shared).
-    over_fields = pair.map("vlm_over_fields", "serial", m, [0, 3, 4, 5, 6, 7], [])
-    velocity, influence, g_dfield, g_dleft, g_dright = over_fields(
-        mirror, field, weight.T, left, right, g, image, image_jacobian
-    )
+    over_fields = pair.map("vlm_over_fields", "serial", m, [2, 3, 4], [])
+    velocity, g_dfield, g_dleft, g_dright = over_fields(field, weight.T, left, right, g)
     column = ca.Function(
         "vlm_column",
-        [field, weight, left, right, g, image, image_jacobian],
+        [field, weight, left, right, g],
         [
-            ca.vec(influence),
+            ca.vec(velocity),
             g * ca.vec(velocity),
             g_dfield.T,
             g_dleft.T,
             g_dright.T,
         ],
     )
-    # Outer map: all sources; field points and the image's weights shared, the g-weighted sums
-    # reduced.
-    over_sources = column.map("vlm_over_sources", "serial", m, [0, 5, 6], [1, 2])
+    # Outer map: all sources; field points shared, the g-weighted sums reduced.
+    over_sources = column.map("vlm_over_sources", "serial", m, [0], [1, 2])
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
+    influence, induced, g_dfield_sum, g_dleft_all, g_dright_all = over_sources(
+        field_all, weight_all, left_all, right_all, g_all
+    )
+    return ca.Function(
+        "vlm_sources",
+        [field_all, weight_all, left_all, right_all, g_all],
+        [induced, influence, g_dfield_sum, g_dleft_all, g_dright_all],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def induced_velocities(n_panels: int) -> ca.Function:
+    """Values only: sum_k g_k v_ik at every field point, without derivatives (4x cheaper).
+
+    Inputs as `source_columns`; output induced (3M, 1) [-] per unit V, rows 3 i + c.
+    """
+    m = n_panels
+    field, weight, left, right, g = _pair_symbols()
+    right_half, left_half = _halves(field, weight, left, right)
+    velocity = _velocity(right_half, left_half)
+    pair = ca.Function("vlm_pair_value", [field, weight, left, right, g], [g * velocity])
+    over_fields = pair.map("vlm_value_over_fields", "serial", m, [2, 3, 4], [])
+    field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
+    column = ca.Function(
+        "vlm_value_column",
+        [field_mx, weight_mx, left_mx, right_mx, g_mx],
+        [ca.vec(over_fields(field_mx, weight_mx.T, left_mx, right_mx, g_mx))],
+    )
+    over_sources = column.map("vlm_value_over_sources", "serial", m, [0], [0])
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
+    return ca.Function(
+        "vlm_induced",
+        [field_all, weight_all, left_all, right_all, g_all],
+        [over_sources(field_all, weight_all, left_all, right_all, g_all)],
+        ["field", "bound_weight", "left", "right", "g"],
+        ["induced"],
+    )
+
+
+# ------------------------------------------------------------------ the image as a parameter
+
+
+def _image_of(point: ca.SX, image: ca.SX) -> ca.SX:
+    """T(point) = diag(1, -1, image) point."""
+    return ca.vertcat(point[0], -point[1], image * point[2])
+
+
+def _image_symbols() -> tuple[ca.SX, ca.SX]:
+    """The image's sign s (its geometry T = diag(1, -1, s) and the weight of its value) and the
+    weight of its derivatives in its own vertices and circulation (module docstring)."""
+    return ca.SX.sym("image"), ca.SX.sym("image_jacobian")
+
+
+def _flow_halves(
+    field: ca.SX, weight: ca.SX, left: ca.SX, right: ca.SX, image: ca.SX
+) -> tuple[_Horseshoe, _Horseshoe]:
+    """The right half's horseshoe at `field` (its bound leg weighted) and its image on the left
+    half, which runs from T(right) to T(left) (its weight s is the caller's)."""
+    return (
+        _Horseshoe(field - left, field - right, weight),
+        _Horseshoe(field - _image_of(right, image), field - _image_of(left, image), 1.0),
+    )
+
+
+def _weighted_velocity(right_half: _Horseshoe, left_half: _Horseshoe, weight: ca.SX) -> ca.SX:
+    """(3,) [-] both halves' induced velocity per unit g, the image's weighted."""
+    return (right_half.velocity() + weight * left_half.velocity()) * _INV_4PI
+
+
+def _flow_vertex_derivatives(
+    right_da: ca.SX,
+    right_db: ca.SX,
+    left_da: ca.SX,
+    left_db: ca.SX,
+    image: ca.SX,
+    image_jacobian: ca.SX,
+) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """`_vertex_derivatives` with the image at T(right), T(left) (T = T^-1): its part in its
+    vertices weighted `image_jacobian`, its part at the field point `image`."""
+    transform = ca.diag(ca.vertcat(1, -1, image))
+    d_field = right_da + right_db + image * (left_da + left_db)
+    d_left = -right_da - image_jacobian * ca.mtimes(left_db, transform)
+    d_right = -right_db - image_jacobian * ca.mtimes(left_da, transform)
+    return d_field, d_left, d_right
+
+
+def flow_pair_kernel() -> ca.Function:
+    """`pair_kernel` with the image as a parameter (module docstring).
+
+    Inputs: field, bound_weight, left, right, g as `pair_kernel`; image, image_jacobian (1,).
+    Outputs, all per unit V:
+        velocity (3,) [-]: induced velocity per unit g (the image's part weighted image).
+        influence (3,) [-]: d(g velocity)/dg, the image's part weighted image_jacobian.
+        g_dfield, g_dleft, g_dright (3, 3): as `pair_kernel`'s.
+    """
+    field, weight, left, right, g = _pair_symbols()
+    image, image_jacobian = _image_symbols()
+    right_half, left_half = _flow_halves(field, weight, left, right, image)
+    d_field, d_left, d_right = _flow_vertex_derivatives(
+        *right_half.derivatives(), *left_half.derivatives(), image, image_jacobian
+    )
+    velocity = _weighted_velocity(right_half, left_half, image)
+    influence = _weighted_velocity(right_half, left_half, image_jacobian)
+    scaled = g * _INV_4PI
+    outputs = ca.cse(
+        [velocity, influence, scaled * d_field.T, scaled * d_left.T, scaled * d_right.T]
+    )
+    return ca.Function(
+        "vlm_flow_pair",
+        [field, weight, left, right, g, image, image_jacobian],
+        outputs,
+        ["field", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
+        ["velocity", "influence", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def flow_normal_pair_kernel() -> ca.Function:
+    """`normal_pair_kernel` with the image as a parameter.
+
+    Inputs: field, bound_weight, left, right, g, normal as `normal_pair_kernel`; image,
+    image_jacobian (1,).
+    Outputs, per unit V: velocity (3,) as `flow_pair_kernel`'s; normal_influence (1,) [-]:
+    n . d(g velocity)/dg (the image's part weighted image_jacobian); g_dfield, g_dleft, g_dright
+    (1, 3).
+    """
+    field, weight, left, right, g = _pair_symbols()
+    normal = ca.SX.sym("normal", 3)
+    image, image_jacobian = _image_symbols()
+    right_half, left_half = _flow_halves(field, weight, left, right, image)
+    d_field, d_left, d_right = _flow_vertex_derivatives(
+        *right_half.normal_derivatives(normal),
+        *left_half.normal_derivatives(normal),
+        image,
+        image_jacobian,
+    )
+    velocity = _weighted_velocity(right_half, left_half, image)
+    influence = _weighted_velocity(right_half, left_half, image_jacobian)
+    scaled = g * _INV_4PI
+    outputs = ca.cse(
+        [velocity, ca.dot(normal, influence), scaled * d_field, scaled * d_left, scaled * d_right]
+    )
+    return ca.Function(
+        "vlm_flow_normal_pair",
+        [field, weight, left, right, g, normal, image, image_jacobian],
+        outputs,
+        ["field", "bound_weight", "left", "right", "g", "normal", "image", "image_jacobian"],
+        ["velocity", "normal_influence", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def flow_normal_source_columns(n_panels: int) -> ca.Function:
+    """`normal_source_columns` of `flow_normal_pair_kernel`: inputs field, normal,
+    bound_weight, left, right, g as there, then image and image_jacobian (1,); outputs as
+    there (influence: the image's part weighted image_jacobian)."""
+    m = n_panels
+    pair = flow_normal_pair_kernel()
+    field, weight, left, right, g = _column_symbols(m)
+    normal = ca.MX.sym("normal", 3, m)
+    image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
+    over_fields = pair.map("vlm_flow_normal_over_fields", "serial", m, [2, 3, 4, 6, 7], [])
+    velocity, normal_influence, g_dfield, g_dleft, g_dright = over_fields(
+        field, weight.T, left, right, g, normal, image, image_jacobian
+    )
+    column = ca.Function(
+        "vlm_flow_normal_column",
+        [field, normal, weight, left, right, g, image, image_jacobian],
+        [
+            g * ca.vec(velocity),
+            normal_influence.T,
+            ca.reshape(g_dfield, 3, m).T,
+            ca.reshape(g_dleft, 3, m).T,
+            ca.reshape(g_dright, 3, m).T,
+        ],
+    )
+    over_sources = column.map("vlm_flow_normal_over_sources", "serial", m, [0, 1, 6, 7], [0, 2])
+    field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
+    normal_all = ca.MX.sym("normal", 3, m)
+    inputs = [field_all, normal_all, weight_all, left_all, right_all, g_all]
+    return ca.Function(
+        "vlm_flow_normal_sources",
+        [*inputs, image, image_jacobian],
+        list(over_sources(*inputs, image, image_jacobian)),
+        ["field", "normal", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
+        ["induced", "influence", "g_dfield", "g_dleft", "g_dright"],
+    )
+
+
+def flow_source_columns(n_panels: int) -> ca.Function:
+    """`source_columns` of `flow_pair_kernel`: inputs as there, then image and image_jacobian
+    (1,); outputs as there (influence: the image's part weighted image_jacobian)."""
+    m = n_panels
+    pair = flow_pair_kernel()
+    field, weight, left, right, g = _column_symbols(m)
+    image, image_jacobian = ca.MX.sym("image"), ca.MX.sym("image_jacobian")
+    over_fields = pair.map("vlm_flow_over_fields", "serial", m, [2, 3, 4, 5, 6], [])
+    velocity, influence, g_dfield, g_dleft, g_dright = over_fields(
+        field, weight.T, left, right, g, image, image_jacobian
+    )
+    column = ca.Function(
+        "vlm_flow_column",
+        [field, weight, left, right, g, image, image_jacobian],
+        [ca.vec(influence), g * ca.vec(velocity), g_dfield.T, g_dleft.T, g_dright.T],
+    )
+    over_sources = column.map("vlm_flow_over_sources", "serial", m, [0, 5, 6], [1, 2])
     field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     influence, induced, g_dfield_sum, g_dleft_all, g_dright_all = over_sources(
         field_all, weight_all, left_all, right_all, g_all, image, image_jacobian
     )
     return ca.Function(
-        "vlm_sources",
+        "vlm_flow_sources",
         [field_all, weight_all, left_all, right_all, g_all, image, image_jacobian],
         [induced, influence, g_dfield_sum, g_dleft_all, g_dright_all],
         ["field", "bound_weight", "left", "right", "g", "image", "image_jacobian"],
@@ -520,45 +633,33 @@ def source_columns(n_panels: int) -> ca.Function:
     )
 
 
-def induced_velocities(n_panels: int, with_image: bool = True) -> ca.Function:
-    """Values only: sum_k g_k v_ik at every field point, without derivatives (4x cheaper).
-
-    Inputs as `source_columns` but image_jacobian; output induced (3M, 1) [-] per unit V, rows
-    3 i + c. Without the image (`with_image` False) the sources' horseshoes alone (the `image`
-    input is then ignored): what a full-span wing whose halves move apart needs, its image
-    half given as sources of its own (`residual.build_full_span_function`).
-    """
+def flow_induced_velocities(n_panels: int, with_image: bool = True) -> ca.Function:
+    """`induced_velocities` with the image as a parameter: inputs as there, then image (1,).
+    Without the image (`with_image` False) the sources' horseshoes alone (image ignored): what a
+    full-span wing whose halves move apart needs, its left half given as sources of its own
+    (`solver.residual.build_full_span_function`)."""
     m = n_panels
     field, weight, left, right, g = _pair_symbols()
     image = ca.SX.sym("image")
-
-    def value_kernel(general: bool) -> ca.Function:
-        if not with_image:
-            velocity = _Horseshoe(field - left, field - right, weight).velocity() * _INV_4PI
-        elif general:
-            velocity = _velocity(*_halves(field, weight, left, right, image), image)
-        else:
-            velocity = _mirror_velocity(*_mirror_halves(field, weight, left, right))
-        return ca.Function(
-            "vlm_pair_value" if general else "vlm_mirror_pair_value",
-            [field, weight, left, right, g, image],
-            [g * velocity],
-        )
-
-    pair = _selected(value_kernel, "vlm_pair_value_selected")
-    over_fields = pair.map("vlm_value_over_fields", "serial", m, [0, 3, 4, 5, 6], [])
+    if with_image:
+        velocity = _weighted_velocity(*_flow_halves(field, weight, left, right, image), image)
+    else:
+        velocity = _Horseshoe(field - left, field - right, weight).velocity() * _INV_4PI
+    pair = ca.Function(
+        "vlm_flow_pair_value", [field, weight, left, right, g, image], [g * velocity]
+    )
+    over_fields = pair.map("vlm_flow_value_over_fields", "serial", m, [2, 3, 4, 5], [])
     field_mx, weight_mx, left_mx, right_mx, g_mx = _column_symbols(m)
     image_mx = ca.MX.sym("image")
-    mirror = image_mx == 1
     column = ca.Function(
-        "vlm_value_column",
+        "vlm_flow_value_column",
         [field_mx, weight_mx, left_mx, right_mx, g_mx, image_mx],
-        [ca.vec(over_fields(mirror, field_mx, weight_mx.T, left_mx, right_mx, g_mx, image_mx))],
+        [ca.vec(over_fields(field_mx, weight_mx.T, left_mx, right_mx, g_mx, image_mx))],
     )
-    over_sources = column.map("vlm_value_over_sources", "serial", m, [0, 5], [0])
+    over_sources = column.map("vlm_flow_value_over_sources", "serial", m, [0, 5], [0])
     field_all, weight_all, left_all, right_all, g_all = _all_symbols(m)
     return ca.Function(
-        "vlm_induced",
+        "vlm_flow_induced",
         [field_all, weight_all, left_all, right_all, g_all, image_mx],
         [over_sources(field_all, weight_all, left_all, right_all, g_all, image_mx)],
         ["field", "bound_weight", "left", "right", "g", "image"],

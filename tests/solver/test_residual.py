@@ -256,7 +256,9 @@ def test_with_its_own_left_half_in_step_the_full_span_model_is_the_symmetric_mod
     system = SYSTEMS[name]().with_flow(Flow())
     x = _deformed_state(system, 17)
     full_span = system.model.full_span()
-    r0, r1, *_ = (np.array(v).ravel() for v in full_span(x, x, system.parameters, _camber(system)))
+    r0, r1, *_ = (
+        np.array(v).ravel() for v in full_span(x, x, system.flow_parameters, _camber(system))
+    )
     ours0, ours1 = system.residual(x)
     np.testing.assert_allclose(r0, ours0, rtol=1e-12, atol=1e-14)
     np.testing.assert_allclose(r1, ours1, rtol=1e-12, atol=1e-14)
@@ -273,7 +275,7 @@ def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_d
     system = CoupledSystem(wing, 3.0, 3, True, Flow.along(1, 2, image_jacobian=-1.0))
     x = _deformed_state(system, 19)
     evaluation, _, controls = system.evaluate_with_controls(x)
-    p, camber = system.parameters, _camber(system)
+    p, camber = system.flow_parameters, _camber(system)
     full_span = system.model.full_span()
 
     def outputs(right, left, p=p, image_camber=camber):
@@ -291,14 +293,14 @@ def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_d
             columns[c][:, k] = (plus[c] - minus[c]) / (2 * step)
         roll_x[k] = (plus[2] - minus[2]) / (2 * step)
     direction = np.asarray(system.layout.split_flow(p)[3])
-    start = system.layout.alpha_index - camber.size
+    start = system.layout.camber_slice.start
     p_plus, p_minus = p.copy(), p.copy()
     p_plus[start : start + camber.size] += step * direction
     p_minus[start : start + camber.size] -= step * direction
     plus = outputs(x, x, p_plus, camber - step * direction)
     minus = outputs(x, x, p_minus, camber + step * direction)
     control = [(plus[c] - minus[c]) / (2 * step) for c in range(2)]
-    rate = system.layout.alpha_index + 3 + 2
+    rate = system.layout.roll_rate_index
     p_plus, p_minus = p.copy(), p.copy()
     p_plus[rate] += step
     p_minus[rate] -= step
@@ -332,9 +334,9 @@ def test_the_linearised_panel_loads_are_the_full_span_models_antisymmetric_deriv
     parameters = system.parameters.copy()
     parameters[system.layout.direction_slice] = dx
     _, _, terms = system.model.evaluate_with_controls(x, parameters)
-    base, camber = system.with_flow(Flow()).parameters, _camber(system)
+    base, camber = system.with_flow(Flow()).flow_parameters, _camber(system)
     direction = np.asarray(system.layout.split_flow(system.parameters)[3])
-    start, step = system.layout.alpha_index - camber.size, 1e-6
+    start, step = system.layout.camber_slice.start, 1e-6
     full_span = system.model.full_span()
 
     def loads(sign: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -300,3 +300,18 @@ def test_the_left_wings_stall_and_the_deflection_are_findings():
     codes = {(f.code, f.half) for f in answer.validity}
     assert ("section_stall", "left") in codes and ("section_stall", "right") in codes
     assert ("control_deflection", None) in codes
+
+
+def test_a_roll_answer_leaves_the_same_wings_symmetric_answers_alone():
+    """The rotated model's wing at rest and its divergence are cached apart from the symmetric
+    model's (`CoupledSystem.model_key`): a symmetric solve gives the same bits before and after
+    a roll answer of the same wing."""
+    solver.clear_caches()
+    wing = _study_aileron()
+    flight = solver.FlightCondition(12.0, 0.0, DENSITY)
+    before = solver.solve(wing, flight, options=K3)
+    solver.clear_caches()
+    roll(wing, flight, K3)
+    after = solver.solve(wing, flight, options=K3)
+    np.testing.assert_array_equal(before.state, after.state)
+    assert before.stability == after.stability
