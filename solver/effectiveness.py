@@ -274,6 +274,8 @@ def _effectiveness(
     return ControlEffectiveness(
         name=surface.name,
         kind=surface.kind,
+        measure="rolling_moment" if aileron else "lift",
+        unit="N m/deg" if aileron else "N/deg",
         derivative=elastic,
         rigid_derivative=rigid,
         effectiveness=ratio,

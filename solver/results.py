@@ -701,13 +701,18 @@ class ControlEffectiveness:
 
     name: str = quantity("", "the surface (wing.control_surfaces[].name)")
     kind: Literal["flap", "aileron"] = quantity("", "what it is (ControlSurface.kind)")
+    measure: Literal["lift", "rolling_moment"] = quantity(
+        "", "what the derivatives are of: a flap's lift, an aileron's rolling moment"
+    )
+    unit: Literal["N/deg", "N m/deg"] = quantity(
+        "", "the unit of derivative and rigid_derivative: N/deg (lift) or N m/deg"
+    )
     derivative: float = quantity(
-        "N/deg or N m/deg",
-        "elastic: d(lift)/d(deflection) of a flap [N/deg], d(rolling moment)/d(deflection) of "
-        "an aileron [N m/deg], the structure deforming",
+        "",
+        "elastic control derivative, in `unit`: d(measure)/d(deflection), the structure deforming",
     )
     rigid_derivative: float = quantity(
-        "N/deg or N m/deg", "the same of the rigid (undeformed) wing at this alpha"
+        "", "the same of the rigid (undeformed) wing at this alpha, in `unit`"
     )
     effectiveness: float | None = quantity(
         "-", "derivative / rigid_derivative (1 for a rigid wing, 0 at reversal), or null"

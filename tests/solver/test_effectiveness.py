@@ -80,7 +80,9 @@ def test_the_derivatives_are_the_roll_answers_derivatives_in_the_deflection():
     (measured 8e-4 at 14 m/s)."""
     wing = _study()
     flight = solver.FlightCondition(14.0, 0.0, DENSITY)
-    _, aileron = control_effectiveness(wing, flight, K3)
+    flap, aileron = control_effectiveness(wing, flight, K3)
+    assert (aileron.measure, aileron.unit) == ("rolling_moment", "N m/deg")
+    assert (flap.measure, flap.unit) == ("lift", "N/deg")
     linear = roll(wing, flight, K3, method="linearised")
     exact = roll(wing, flight, K3)
     assert linear.rolling_moment == pytest.approx(3.0 * aileron.derivative, rel=1e-12)
