@@ -35,6 +35,7 @@ from typing import Literal
 import numpy as np
 
 from solver.branch import pressure_scale
+from solver.controls import strip_weights
 from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, numerical_failures_as
 from solver.evaluation import Evaluation
 from solver.geometry import DEG, chordwise_nodes
@@ -564,7 +565,7 @@ def hinge_moments(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
     moments = np.zeros(len(wing.control_surfaces))
     for index, surface in enumerate(wing.control_surfaces):
         hinge = loads.leading_edge + surface.hinge * wing.chord * chord_axis  # (3, N)
-        covered = _strip_shares(surface, wing.y)
+        covered = strip_weights(surface, wing.y)
         total = 0.0
         for strip in np.flatnonzero(covered):
             a, b = hinge[:, strip], hinge[:, strip + 1]
@@ -578,12 +579,6 @@ def hinge_moments(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
                 total += covered[strip] * float(np.cross(arm, loads.force[:, panel]) @ axis)
         moments[index] = total
     return moments
-
-
-def _strip_shares(surface, y: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
-    start, end = surface.extent(float(y[-1]))
-    covered = np.clip(np.minimum(y[1:], end) - np.maximum(y[:-1], start), 0.0, None)
-    return covered / np.diff(y)
 
 
 # The fraction of the linearised change at which its hinge moments are central-differenced:
