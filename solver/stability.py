@@ -72,9 +72,9 @@ def divergence_pressure(
     `beam`: `beam_response` of this wing (computed here when not given).
     """
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
-    free = np.arange(layout.circulation.start, layout.circulation.stop)
-    free_rows = np.arange(layout.tangency_rows.start, layout.tangency_rows.stop)
-    return _smallest_pressure(j0, j1, layout, free, free_rows, beam, evaluation)
+    return _smallest_pressure(
+        j0, j1, layout, layout.circulation, layout.tangency_rows, beam, evaluation
+    )
 
 
 def reversal_pressure(
@@ -118,21 +118,26 @@ def _smallest_pressure(
     j0: np.ndarray,
     j1: np.ndarray,
     layout: Layout,
-    free: np.ndarray,
-    free_rows: np.ndarray,
+    free: np.ndarray | slice,
+    free_rows: np.ndarray | slice,
     beam: np.ndarray | None,
     evaluation: Evaluation,
 ) -> float | None:
     """Smallest positive real lambda with j0 + lambda j1 singular, where j1 lives in the load
     rows and j0's beam rows touch only the structure's unknowns: the structure's block is
     reduced away (module docstring), `free` and `free_rows` the other unknowns and equations
-    (the circulations and tangency, and a border's)."""
+    (the circulations and tangency, slices; a border's too, index arrays)."""
     structure = layout.structure
     try:
         if beam is None:
             beam = beam_response(evaluation, layout)
+        block = (
+            j0[free_rows, free]
+            if isinstance(free, slice) and isinstance(free_rows, slice)
+            else j0[np.ix_(np.asarray(free_rows), np.asarray(free))]
+        )
         # F^{-1} F_s: how the free unknowns answer a deformation.
-        response = np.linalg.solve(j0[np.ix_(free_rows, free)], j0[free_rows, structure])
+        response = np.linalg.solve(block, j0[free_rows, structure])
     except np.linalg.LinAlgError:
         return None
     loads = j1[layout.load_rows]
