@@ -18,6 +18,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from solver.airspeed_sweep import airspeed_sweep
 from solver.cache import CacheInfo, cache_info, clear_caches
+from solver.controls import ControlSurface
 from solver.design import (
     Design,
     DesignCondition,
@@ -32,6 +33,12 @@ from solver.divergence import (
     fit_divergence,
     linear_divergence,
     linear_divergence_pressure,
+)
+from solver.effectiveness import (
+    antisymmetric_divergence,
+    control_effectiveness,
+    control_sweep,
+    linear_reversal,
 )
 from solver.errors import (
     ConvergenceError,
@@ -77,24 +84,33 @@ from solver.results import (
     AirspeedSweep,
     AirspeedSweepInfo,
     ConstraintValue,
+    ControlEffectiveness,
+    ControlSweep,
+    ControlSweepPoint,
     DivergenceSummary,
     Equilibrium,
     Finding,
     FindingOnset,
     FitDivergence,
     Fold,
+    HingeMoment,
     LinearDivergence,
     OptimalDesign,
     OptimizerInfo,
     Panels,
     PointFailure,
     Progress,
+    Reversal,
+    ReversalSummary,
     RigidOptimum,
+    RollResponse,
+    RollStability,
     SolveInfo,
     Stability,
     Stations,
     Totals,
 )
+from solver.roll import roll
 from solver.solve import solve
 from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
 from solver.trefftz import trefftz_drag
@@ -117,6 +133,13 @@ __all__ = [
     "clear_caches",
     "ConcentratedMass",
     "ConstraintValue",
+    "ControlEffectiveness",
+    "ControlSurface",
+    "ControlSweep",
+    "ControlSweepPoint",
+    "antisymmetric_divergence",
+    "control_effectiveness",
+    "control_sweep",
     "ConvergenceError",
     "Design",
     "DesignCondition",
@@ -141,6 +164,7 @@ __all__ = [
     "FlutterPoint",
     "FlutterResult",
     "Fold",
+    "HingeMoment",
     "InfeasibleDesign",
     "InitialGuess",
     "InvalidInput",
@@ -150,6 +174,7 @@ __all__ = [
     "linear_divergence",
     "linear_divergence_pressure",
     "LinearDivergence",
+    "linear_reversal",
     "MassModel",
     "Material",
     "ModeShape",
@@ -165,8 +190,13 @@ __all__ = [
     "Panels",
     "Progress",
     "PointFailure",
+    "Reversal",
+    "ReversalSummary",
     "rigid_trim_alpha",
     "RigidOptimum",
+    "roll",
+    "RollResponse",
+    "RollStability",
     "solve",
     "SolveInfo",
     "SolveInput",

@@ -127,9 +127,11 @@ def _model_bytes(model: CompiledModel) -> int:
     return 5_000_000 + 5_200 * m * m
 
 
-def model_for(layout: Layout) -> CompiledModel:
-    """The model of `layout`: from the cache, else built (compiling in the background)."""
-    model = cached(("model", layout), lambda: build_model(layout), _model_bytes)
+def model_for(layout: Layout, flow: bool = False) -> CompiledModel:
+    """The model of `layout` (its flow model with `flow`, `solver.compiled`): from the cache,
+    else built (compiling in the background)."""
+    key = ("flow_model", layout) if flow else ("model", layout)
+    model = cached(key, lambda: build_model(layout, flow), _model_bytes)
     model.refresh()
     return model
 

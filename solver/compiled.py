@@ -14,6 +14,11 @@ The virtual machine and the compiled code perform the same floating-point operat
 order, and the code is compiled without contracting multiply-adds, so both give bit-identical
 results: an answer never depends on which of the two served it.
 
+The flow model (control surfaces and roll, `solver.residual`) is a mesh's second model, with a
+library of its own: built, compiled and loaded the same way, but only once something first
+asks for it (`flow_model`), so that a symmetric solve's library and its compile time stay what
+they were.
+
 Environment:
     FLEXWING_CACHE_DIR  where compiled libraries live (default: ~/.cache/flexwing)
     FLEXWING_COMPILE    "0" to never compile (virtual machine only); default "1"
@@ -41,11 +46,12 @@ from typing import TypeVar
 import casadi as ca
 import numpy as np
 
-from solver.evaluation import AlphaTerms, Evaluation
+from solver.evaluation import AlphaTerms, ControlTerms, Evaluation
 from solver.layout import Layout
 from solver.residual import (
     MODEL_VERSION,
     build_coupled_function,
+    build_full_span_function,
     build_panel_loads_function,
     build_residual_function,
     model_tag,
@@ -142,12 +148,13 @@ def compilation_enabled() -> bool:
     return os.environ.get("FLEXWING_COMPILE", "1") != "0" and shutil.which(_compiler()) is not None
 
 
-def _library_path(layout: Layout) -> Path:
+def _library_path(layout: Layout, flow: bool = False) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
     flags = "".join(_flags(_compiler())).replace("-", "_")
     strip = "-strip" if layout.aerodynamics == "strip" else ""  # the lattice's names unchanged
     mesh = f"n{layout.n}-k{layout.chordwise}{strip}"
-    tag = f"{mesh}-model{MODEL_VERSION}-casadi{casadi_version}-{platform.machine()}{flags}"
+    model = f"model{MODEL_VERSION}" + ("-flow" if flow else "")
+    tag = f"{mesh}-{model}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
 
 
@@ -158,6 +165,10 @@ def library_on_disk(layout: Layout) -> bool:
 
 
 T = TypeVar("T")
+
+# The full-span functions of the meshes used (virtual machine only, `CompiledModel.full_span`).
+_full_span: dict[Layout, ca.Function] = {}
+_full_span_lock = threading.Lock()
 
 
 class _BufferedCall:
@@ -207,32 +218,51 @@ def _buffered_calls(functions: _Functions) -> list[_BufferedCall]:
     return [_BufferedCall(function) for function in functions]
 
 
-def _symbolic_functions(layout: Layout) -> _Functions:
-    """The coupled (with Jacobians), residual-only and panel-loads functions, in that order."""
+def _symbolic_functions(layout: Layout, flow: bool = False) -> _Functions:
+    """The coupled (with Jacobians), residual-only and panel-loads functions, in that order
+    (the flow model's with `flow`)."""
     return (
-        build_coupled_function(layout),
-        build_residual_function(layout),
-        build_panel_loads_function(layout),
+        build_coupled_function(layout, flow),
+        build_residual_function(layout, flow),
+        build_panel_loads_function(layout, flow),
+    )
+
+
+def _alpha_terms(outputs: list[np.ndarray]) -> AlphaTerms:
+    """The coupled function's trim and design outputs (copies) as `AlphaTerms`."""
+    r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = outputs
+    return AlphaTerms(
+        r0_alpha.ravel(),
+        r1_alpha.ravel(),
+        float(lift[0, 0]),
+        lift_x.ravel(),
+        float(lift_alpha[0, 0]),
+        float(drag[0, 0]),
+        drag_x.ravel(),
     )
 
 
 class CompiledModel:
     """The numerical functions of one mesh; thread-safe.
 
-    `compiled` says whether generated C code serves it (else CasADi's virtual machine).
+    `compiled` says whether generated C code serves it (else CasADi's virtual machine); `flow`
+    whether it is the mesh's flow model (`solver.residual`: its parameter vector is longer, and
+    `evaluate_with_controls`, `residual_with_roll` and `full_span` are its own).
     """
 
-    def __init__(self, layout: Layout, functions: _Functions) -> None:
+    def __init__(self, layout: Layout, functions: _Functions, flow: bool = False) -> None:
         self.layout = layout
+        self.flow = flow
         self._calls = _buffered_calls(functions)
         self.compiled = False
         self._compile_thread: threading.Thread | None = None
 
     @classmethod
-    def from_library(cls, layout: Layout, library: Path) -> CompiledModel:
+    def from_library(cls, layout: Layout, library: Path, flow: bool = False) -> CompiledModel:
         """The model served by a compiled library: no symbolic build at all."""
         model = cls.__new__(cls)
         model.layout = layout
+        model.flow = flow
         model._compile_thread = None
         model._use_library(library)
         return model
@@ -256,35 +286,84 @@ class CompiledModel:
     def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
         """`evaluate`, and what trim and design add (same evaluation, nothing recomputed)."""
         evaluation, alpha_outputs = self._calls[0].collect(
-            x, p, lambda outputs: (self._evaluation(outputs), [a.copy() for a in outputs[5:]])
+            x, p, lambda outputs: (self._evaluation(outputs), [a.copy() for a in outputs[5:12]])
         )
-        r0_alpha, r1_alpha, lift, lift_x, lift_alpha, drag, drag_x = alpha_outputs
-        terms = AlphaTerms(
-            r0_alpha.ravel(),
-            r1_alpha.ravel(),
-            float(lift[0, 0]),
-            lift_x.ravel(),
-            float(lift_alpha[0, 0]),
-            float(drag[0, 0]),
-            drag_x.ravel(),
+        return evaluation, _alpha_terms(alpha_outputs)
+
+    def evaluate_with_controls(
+        self, x: np.ndarray, p: np.ndarray
+    ) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
+        """The flow model's `evaluate_with_alpha`, and what control surfaces and roll add (same
+        evaluation)."""
+        evaluation, alpha_outputs, control_outputs = self._calls[0].collect(
+            x,
+            p,
+            lambda outputs: (
+                self._evaluation(outputs),
+                [a.copy() for a in outputs[5:12]],
+                [c.copy() for c in outputs[12:]],
+            ),
         )
-        return evaluation, terms
+        r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p, *rates = control_outputs
+        m, n = self.layout.n_panels, self.layout.n
+        loads_along, loads_control, loads_rate = (r.reshape(6, m) for r in rates[:3])
+        center_along, center_control = (r.reshape(m, 3).T for r in rates[3:5])
+        leading_edge_along, quarter_chord_along = (r.reshape(n, 3).T for r in rates[5:])
+        controls = ControlTerms(
+            r0_c.ravel(),
+            r1_c.ravel(),
+            float(lift_c[0, 0]),
+            float(roll[0, 0]),
+            roll_x.ravel(),
+            float(roll_c[0, 0]),
+            r0_p.ravel(),
+            r1_p.ravel(),
+            float(roll_p[0, 0]),
+            loads_along,
+            loads_control,
+            loads_rate,
+            center_along,
+            center_control,
+            leading_edge_along,
+            quarter_chord_along,
+        )
+        return evaluation, _alpha_terms(alpha_outputs), controls
 
     def residual(self, x: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(r0, r1) at x, without derivatives."""
-        r0, r1, _ = self._calls[1](x, p)
+        r0, r1, *_ = self._calls[1](x, p)
         return r0.ravel(), r1.ravel()
 
     def residual_with_lift(
         self, x: np.ndarray, p: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) at x, and the lift of both halves per unit q [m^2], without derivatives."""
-        r0, r1, lift = self._calls[1](x, p)
+        r0, r1, lift, *_ = self._calls[1](x, p)
         return r0.ravel(), r1.ravel(), float(lift[0, 0])
+
+    def residual_with_roll(
+        self, x: np.ndarray, p: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, float]:
+        """The flow model's (r0, r1) at x, and the rolling moment per unit q [m^3]
+        (`ControlTerms.roll`), without derivatives."""
+        r0, r1, _, roll = self._calls[1](x, p)
+        return r0.ravel(), r1.ravel(), float(roll[0, 0])
+
+    def full_span(self) -> ca.Function:
+        """`solver.residual.build_full_span_function` of this mesh: the right half with a
+        left half of its own (the flow model's parameters). Built on first use and served by
+        the virtual machine: only tests call it."""
+        with _full_span_lock:
+            function = _full_span.get(self.layout)
+            if function is None:
+                function = build_full_span_function(self.layout)
+                _full_span[self.layout] = function
+            return function
 
     def panel_loads(self, x: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
         """[force (3, M) per unit q, torque (1, M) per unit q about the undeformed elastic axis,
-        center (3, M) force points, quarter_chord (3, N)]: the right half-wing's panels."""
+        center (3, M) force points, quarter_chord (3, N), and the flow model's leading_edge
+        (3, N)]: the right half-wing's panels."""
         return self._calls[2](x, p)
 
     @property
@@ -295,7 +374,7 @@ class CompiledModel:
     def refresh(self) -> None:
         """Swap in the library on disk if one appeared since (another process compiled it)."""
         if not self.compiled and not self.compiling:
-            library = _library_path(self.layout)
+            library = _library_path(self.layout, self.flow)
             if library.exists():
                 with contextlib.suppress(OSError, RuntimeError):
                     self._use_library(library)
@@ -313,7 +392,7 @@ class CompiledModel:
         if self.compiled or not compilation_enabled():
             return
         if deadline is None:
-            library = _compile_library(self.layout, None, wait=True)
+            library = _compile_library(self.layout, None, wait=True, flow=self.flow)
             if library is not None:
                 self._use_library(library)
             return
@@ -328,8 +407,9 @@ class CompiledModel:
 
     def _use_library(self, library: Path) -> None:
         tag = model_tag(self.layout)
+        kind = "flow_" if self.flow else ""
         coupled, residual, panel_loads = (
-            ca.external(f"flexwing_{function}_{tag}", str(library))
+            ca.external(f"flexwing_{kind}{function}_{tag}", str(library))
             for function in ("coupled", "residual", "panel_loads")
         )
         calls = _buffered_calls((coupled, residual, panel_loads))
@@ -343,20 +423,21 @@ class CompiledModel:
             target=_background_compile,
             args=(self, functions, launched),
             daemon=True,
-            name=f"flexwing-compile-{self.layout.n}-{self.layout.chordwise}",
+            name=f"flexwing-compile-{self.layout.n}-{self.layout.chordwise}"
+            + ("-flow" if self.flow else ""),
         )
         self._compile_thread.start()
 
 
-def build_model(layout: Layout) -> CompiledModel:
-    """A model for `layout`: compiled if a library exists on disk, else the virtual machine,
-    compiling in the background when compilation is enabled."""
-    library = _library_path(layout)
+def build_model(layout: Layout, flow: bool = False) -> CompiledModel:
+    """A model for `layout` (its flow model with `flow`): compiled if a library exists on disk,
+    else the virtual machine, compiling in the background when compilation is enabled."""
+    library = _library_path(layout, flow)
     if library.exists():
         with contextlib.suppress(OSError, RuntimeError):
-            return CompiledModel.from_library(layout, library)
-    functions = _symbolic_functions(layout)
-    model = CompiledModel(layout, functions)
+            return CompiledModel.from_library(layout, library, flow)
+    functions = _symbolic_functions(layout, flow)
+    model = CompiledModel(layout, functions, flow)
     model.refresh()
     if not model.compiled and compilation_enabled():
         model._start_compiling(functions)
@@ -368,13 +449,14 @@ def _compile_library(
     functions: _Functions | None,
     wait: bool = False,
     launched: threading.Event | None = None,
+    flow: bool = False,
 ) -> Path | None:
-    """Generate and compile the C library of `layout`.
+    """Generate and compile the C library of `layout` (its flow model's with `flow`).
 
     If another process is compiling it, return None at once, or with `wait` block until it has.
     `launched` is set once the detached compiler runs.
     """
-    library = _library_path(layout)
+    library = _library_path(layout, flow)
     if library.exists():
         return library
     library.parent.mkdir(parents=True, exist_ok=True)
@@ -397,7 +479,7 @@ def _compile_library(
                 fcntl.flock(compiler_slot, fcntl.LOCK_EX)
             if library.exists():
                 return library
-            return _generate_and_compile(layout, functions, library, launched)
+            return _generate_and_compile(layout, functions, library, launched, flow)
     return library
 
 
@@ -406,12 +488,14 @@ def _generate_and_compile(
     functions: _Functions | None,
     library: Path,
     launched: threading.Event | None,
+    flow: bool = False,
 ) -> Path:
     """Generate the C source of `layout` and compile it into `library` (locks held)."""
     if functions is None:
-        functions = _symbolic_functions(layout)
+        functions = _symbolic_functions(layout, flow)
     work = Path(tempfile.mkdtemp(prefix="build-", dir=library.parent))
-    source = work / f"flexwing_{layout.n}_{layout.chordwise}.c"
+    kind = "flow_" if flow else ""
+    source = work / f"flexwing_{kind}{layout.n}_{layout.chordwise}.c"
     generator = ca.CodeGenerator(source.name, {"with_header": False})
     for function in functions:
         generator.add(function)
@@ -453,7 +537,7 @@ def _background_compile(
     model: CompiledModel, functions: _Functions, launched: threading.Event
 ) -> None:
     try:
-        library = _compile_library(model.layout, functions, launched=launched)
+        library = _compile_library(model.layout, functions, launched=launched, flow=model.flow)
     except (OSError, subprocess.CalledProcessError) as error:
         log.warning("compiling the %s model failed, staying on the VM: %s", model.layout, error)
         return

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["AlphaTerms", "Evaluation"]
+__all__ = ["AlphaTerms", "ControlTerms", "Evaluation"]
 
 
 @dataclass(frozen=True)
@@ -56,3 +56,39 @@ class AlphaTerms:
     lift_alpha: float
     drag: float
     drag_x: np.ndarray
+
+
+@dataclass(frozen=True)
+class ControlTerms:
+    """What control surfaces and roll add at one state x (`solver.residual`).
+
+    Along the model's control direction (d(camber)/d(deflection), per radian of deflection):
+    r0, r1: (n,) d(r0), d(r1); lift: [m^2/rad] d(lift per unit q) (both halves).
+    roll: [m^3] the rolling moment about x per unit q (twice the right half's: both halves' in
+    the antisymmetric flow); roll_x: (n,) its gradient in x; roll_control: [m^3/rad] its
+    derivative along the control direction.
+    Per unit roll rate p / V [rad/m]: rate_r0, rate_r1: (n,) d(r0), d(r1); roll_rate: [m^4]
+    d(roll).
+    The panel loads' derivatives, (6, M) per unit q in `solver.residual`'s order (Fx, Fy, Fz,
+    Fz (r . e_s), (r x F) . e_s, (r x F) . e_x): loads_along along the model's direction
+    parameter in x, loads_control along the control, loads_rate along p / V; the force points'
+    (3, M) [m] center_along and center_control; the stations' (3, N) [m] leading_edge_along and
+    quarter_chord_along (along the direction; the camber moves neither).
+    """
+
+    r0: np.ndarray
+    r1: np.ndarray
+    lift: float
+    roll: float
+    roll_x: np.ndarray
+    roll_control: float
+    rate_r0: np.ndarray
+    rate_r1: np.ndarray
+    roll_rate: float
+    loads_along: np.ndarray
+    loads_control: np.ndarray
+    loads_rate: np.ndarray
+    center_along: np.ndarray
+    center_control: np.ndarray
+    leading_edge_along: np.ndarray
+    quarter_chord_along: np.ndarray

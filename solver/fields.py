@@ -99,6 +99,7 @@ class Limits:
 #   integer      a whole number within the limits (a count)
 #   flag         true or false
 #   choice       one of `choices`
+#   text         a name: a string of 1 to `le` characters
 #   per_station  one number for every station, or N numbers, each within the limits
 #   positions    the stations: N increasing numbers from 0, or evenly spaced ones
 #                (`solver.inputs.StationSpacing`)
@@ -113,6 +114,7 @@ FORMS = (
     "integer",
     "flag",
     "choice",
+    "text",
     "per_station",
     "positions",
     "airfoil",

@@ -97,7 +97,8 @@ class Lattice:
     left, right: bound-vortex vertices; center: force point (middle of the bound vortex);
     leg: bound vortex vector; collocation: flow-tangency point; normal: unit normal [-].
     quarter_chord: (3, N) quarter-chord points of the stations, camber left out (AeroSandbox's
-    reference-area points).
+    reference-area points); leading_edge: (3, N) the stations' deformed leading edges (the
+    chord axis is their difference over a quarter chord).
     """
 
     left: ca.SX
@@ -107,6 +108,7 @@ class Lattice:
     collocation: ca.SX
     normal: ca.SX
     quarter_chord: ca.SX
+    leading_edge: ca.SX
 
 
 def _cross(a: ca.SX, b: ca.SX) -> ca.SX:
@@ -199,4 +201,5 @@ def lattice(
         collocation=collocation,
         normal=normal,
         quarter_chord=quarter_chord,
+        leading_edge=le,
     )

@@ -19,6 +19,7 @@ import numpy as np
 
 from solver import fields
 from solver.airfoil import MAX_CAMBER, CamberLine, camber_line
+from solver.controls import ControlSurface, symmetric_camber, validate_surfaces
 from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
 from solver.mass import MassModel
@@ -134,7 +135,15 @@ def _tube(design: SparDesign, chord: np.ndarray, airfoil: tuple[CamberLine, ...]
 
 
 # What `Wing.create` resolves by hand; every other input field is checked by its form.
-_RESOLVED = ("y", "bending_stiffness", "torsional_stiffness", "airfoil", "spar", "mass")
+_RESOLVED = (
+    "y",
+    "bending_stiffness",
+    "torsional_stiffness",
+    "airfoil",
+    "spar",
+    "mass",
+    "control_surfaces",
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,6 +246,15 @@ class Wing:
         default=None,
         example=1.4,
     )
+    control_surfaces: tuple[ControlSurface, ...] = parameter(
+        "",
+        "the flaps and ailerons, none overlapping: a flap's deflection acts on both wings "
+        "alike (every operation sees it), an aileron's antisymmetrically (roll, control "
+        "effectiveness and reversal); the hinge must leave a whole chordwise panel aft of it",
+        form="items",
+        given=ControlSurface,
+        default=(),
+    )
     mass: MassModel | None = parameter(
         "",
         "the wing's mass, per station like the stiffnesses, for its vibration modes and "
@@ -309,7 +327,10 @@ class Wing:
                 mass.inertia_per_length,
                 mass.concentrated,
             )
-        return cls(y=y_arr, spar=tube, airfoil=sections, mass=mass, **normal)
+        surfaces = validate_surfaces(given.get("control_surfaces"), y_arr)
+        return cls(
+            y=y_arr, spar=tube, airfoil=sections, mass=mass, control_surfaces=surfaces, **normal
+        )
 
     @property
     def n_stations(self) -> int:
@@ -356,13 +377,15 @@ class Wing:
         )
 
     def camber_at(self, x: np.ndarray) -> np.ndarray:
-        """(N, len(x)) [-] camber / chord of each station's section at x / chord."""
+        """(N, len(x)) [-] camber / chord of each station's section at x / chord, the flaps'
+        deflection included (`solver.controls`; refused where x cannot carry a flap)."""
+        flaps = symmetric_camber(self.control_surfaces, self.y, x)
         if not self.airfoil:
-            return np.zeros((self.n_stations, len(x)))
+            return flaps
         # One airfoil for the whole wing is one line repeated: evaluate each line once.
         lines = {id(line): line for line in self.airfoil}
         values = {key: line.at(x) for key, line in lines.items()}
-        return np.array([values[id(line)] for line in self.airfoil])
+        return np.array([values[id(line)] for line in self.airfoil]) + flaps
 
 
 def _default(cls: type, name: str) -> Any:
@@ -522,6 +545,13 @@ class FlightCondition:
         if self.velocity is None:
             raise InvalidInput("velocity", "is required: the airspeed to solve at")
         return OperatingPoint(self.velocity, alpha, self.density)
+
+    def at_given_alpha(self, what: str) -> OperatingPoint:
+        """The point of a condition that gives its airspeed and alpha, for `what` (an operation
+        that is not trimmed: "the roll response"); InvalidInput naming the missing field."""
+        if self.alpha is None:
+            raise InvalidInput("alpha", f"is required: {what} is answered at a given alpha")
+        return self.at_alpha(self.alpha)
 
     @staticmethod
     def velocity_for(dynamic_pressure: float, density: float) -> float:

@@ -18,6 +18,15 @@ Parameters p, in this order:
 The aerodynamics (`Layout.aerodynamics`) changes what the tangency rows say, never where
 anything sits: "lattice" (the horseshoe lattice, every panel seeing every horseshoe) or "strip"
 (strip theory: each strip a two-dimensional airfoil, `solver.residual`).
+
+The flow model's parameters (control surfaces and roll, `solver.residual`'s flow functions)
+follow these, in this order:
+    image (+1 the mirror, symmetric flow; -1 the rotation about x, antisymmetric flow),
+    image_jacobian (the weight of the image's own derivatives: equal to image for the exact
+    Jacobian; `solver.vlm`), roll_rate [rad/m] (p / V, a steady roll rate about x per unit
+    airspeed), control (N (k + 1), station-major: the direction d(camber)/d(deflection)
+    [1/rad] of the control derivatives), direction (3N + M: a direction in the unknowns along
+    which the panel loads' derivatives are returned, a roll answer's linearised loads).
 """
 
 from __future__ import annotations
@@ -138,3 +147,56 @@ class Layout:
         camber = p[start : start + n * k1]
         end = start + n * k1
         return (*parts, camber, p[end], p[end + 1], p[end + 2])
+
+    # The flow model's parameters, after these
+    @property
+    def n_flow_parameters(self) -> int:
+        """How many parameters the flow model adds (module docstring)."""
+        return 3 + self.n * (self.chordwise + 1) + self.n_unknowns
+
+    def flow_parameters(
+        self,
+        image: float = 1.0,
+        image_jacobian: float = 1.0,
+        roll_rate: float = 0.0,
+        control: np.ndarray | None = None,
+        direction: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """(n_flow_parameters,) the flow model's part of its parameter vector: control (N,
+        k + 1) [1/rad] and direction (n,), default zero."""
+        if control is None:
+            control = np.zeros(self.n * (self.chordwise + 1))
+        if direction is None:
+            direction = np.zeros(self.n_unknowns)
+        return np.concatenate(
+            [[image, image_jacobian, roll_rate], np.ravel(control), np.ravel(direction)]
+        )
+
+    def split_flow(self, p):  # type: ignore[no-untyped-def]
+        """The flow model's parameter vector's flow parts (symbolic or numeric): image,
+        image_jacobian, roll_rate [rad/m], control (N (k + 1)) [1/rad], direction (n)."""
+        start = self.n_parameters
+        control = self.control_slice
+        return p[start], p[start + 1], p[start + 2], p[control], p[self.direction_slice]
+
+    @property
+    def roll_rate_index(self) -> int:
+        """Where p / V [rad/m] sits in the flow model's parameter vector."""
+        return self.n_parameters + 2
+
+    @property
+    def control_slice(self) -> slice:
+        """Where the control direction sits in the flow model's parameter vector."""
+        start = self.n_parameters + 3
+        return slice(start, start + self.n * (self.chordwise + 1))
+
+    @property
+    def direction_slice(self) -> slice:
+        """Where the direction in the unknowns sits in the flow model's parameter vector."""
+        end = self.n_parameters + self.n_flow_parameters
+        return slice(end - self.n_unknowns, end)
+
+    @property
+    def camber_slice(self) -> slice:
+        """Where the camber sits in the parameter vector (either model's)."""
+        return slice(6 * self.n, 6 * self.n + self.n * (self.chordwise + 1))

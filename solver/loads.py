@@ -24,6 +24,7 @@ __all__ = [
     "PanelLoads",
     "RigidLoads",
     "equilibrium_loads",
+    "flow_panel_loads",
     "lift_and_drag",
     "outboard_sum",
     "panel_loads",
@@ -41,13 +42,16 @@ class PanelLoads:
     """The right half-wing's M = (N-1) k panels at one state and dynamic pressure.
 
     force: (3, M) [N]; torque: (M,) [N m] (r x F) . e_s about the undeformed elastic axis;
-    center: (3, M) [m] deformed force points; quarter_chord: (3, N) [m] the stations'.
+    center: (3, M) [m] deformed force points; quarter_chord: (3, N) [m] the stations';
+    leading_edge: (3, N) [m] the stations' deformed leading edges, when the model gives them
+    (the flow model's, for hinge lines), else None.
     """
 
     force: np.ndarray
     torque: np.ndarray
     center: np.ndarray
     quarter_chord: np.ndarray
+    leading_edge: np.ndarray | None = None
 
     def per_strip(self, values: np.ndarray, k: int) -> np.ndarray:
         """(M,) per panel -> (N-1,) summed over each strip's k panels."""
@@ -55,8 +59,14 @@ class PanelLoads:
 
 
 def panel_loads(system: CoupledSystem, x: np.ndarray, q: float) -> PanelLoads:
-    force, torque, center, quarter_chord = system.panel_loads(x)
-    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord)
+    force, torque, center, quarter_chord, *leading_edge = system.panel_loads(x)
+    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord, *leading_edge)
+
+
+def flow_panel_loads(system: CoupledSystem, x: np.ndarray, q: float) -> PanelLoads:
+    """`panel_loads` from the flow model, whatever the flow: with the leading edges."""
+    force, torque, center, quarter_chord, leading_edge = system.flow_panel_loads(x)
+    return PanelLoads(q * force, q * torque.ravel(), center, quarter_chord, leading_edge)
 
 
 def lift_and_drag(loads: PanelLoads, alpha_deg: float) -> tuple[float, float]:

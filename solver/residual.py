@@ -27,7 +27,19 @@ per unit V, so the residual is exactly affine in q:
     r(x; p, q) = r0(x; p) + q r1(x; p),   J = J0 + q J1.
 
 The compiled function returns r0, r1, J0, J1 (their non-zero row blocks), and for trimmed
-flight the derivatives of r0 and r1 in alpha and the lift per unit q with its derivatives. The
+flight the derivatives of r0 and r1 in alpha and the lift per unit q with its derivatives.
+
+The flow model (`flow=True` in the builders; control surfaces and roll: `solver.roll`,
+`solver.effectiveness`) is the same model with the image half's flow as parameters
+(`solver.vlm`'s flow kernels: the mirror or the rotation about x, and the image's derivatives
+exact or turned), a steady roll rate p, which adds (p / V) (0, z, -y) to the unit freestream at
+the collocation and force points (the air seen from a wing rolling about x), and more outputs:
+the derivatives of r0, r1, the lift and the rolling moment along a control direction (a
+d(camber)/d(deflection) parameter) and in the roll rate, the rolling moment's gradient, and
+the panel loads' derivatives along a direction in the unknowns. Its functions are separate
+(built with Python branches, so `flow=False` builds exactly the symmetric model's graph): the
+flow kernels and the outputs would cost every symmetric Jacobian ~15 % (measured), and the flow
+model lives in a library of its own (`solver.compiled`), compiled when first used. The
 Jacobian is exact: CasADi differentiates the lattice geometry, the aerodynamic glue and the
 horseshoe kernel (`vlm.pair_kernel` at the force points; `vlm.normal_pair_kernel` at the
 collocation points, where tangency needs only the normal component); the O(M^2)
@@ -59,11 +71,19 @@ import solver.layout as layout_module
 import solver.vlm as vlm_module
 from solver.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
 from solver.layout import Layout
-from solver.vlm import induced_velocities, normal_source_columns, source_columns
+from solver.vlm import (
+    flow_induced_velocities,
+    flow_normal_source_columns,
+    flow_source_columns,
+    induced_velocities,
+    normal_source_columns,
+    source_columns,
+)
 
 __all__ = [
     "MODEL_VERSION",
     "build_coupled_function",
+    "build_full_span_function",
     "build_panel_loads_function",
     "build_residual_function",
     "model_tag",
@@ -93,22 +113,36 @@ def _is_docstring(statement: ast.stmt) -> bool:
     )
 
 
-# Compiled libraries on disk are keyed by it: it changes by itself with the equations or the
-# graph they are generated from (this module and the modules below it that build the graph).
+# Compiled libraries on disk are keyed by it (the flow model's too, `solver.compiled`): it changes
+# by itself with the equations or the graph they are generated from (this module and the modules
+# below it that build the graph).
 MODEL_VERSION = _graph_source_digest(
     sys.modules[__name__], layout_module, geometry_module, vlm_module
 )
 
 DEG_PER_RAD = 180.0 / np.pi
 # Per-panel loads, in this order, each M rows: Fx, Fy, Fz [m^2 per unit q], Fz (r . e_s) and
-# (r x F) . e_s [m^3 per unit q].
+# (r x F) . e_s [m^3 per unit q]; the flow model adds (r x F) . e_x [m^3 per unit q], the
+# rolling moment about x.
 _LOADS = 5
+_ROLL = 5
 
 
 def _freestream(alpha_deg: ca.SX) -> ca.SX:
     """Unit freestream velocity in geometry axes, (3,) [-]."""
     alpha = alpha_deg * DEG
     return ca.vertcat(ca.cos(alpha), 0, ca.sin(alpha))
+
+
+def _onset(alpha_deg: ca.SX, points: ca.SX, roll_rate: ca.SX | None) -> ca.SX:
+    """(3, M) [-] the air's velocity per unit V at `points` (3, M) [m]: the freestream, plus
+    (flow model) the roll rate's (p / V) (0, z, -y), the air seen from a wing rolling about x
+    at p [rad/s] (x aft, y right, z up; positive p raises the right wing)."""
+    m = points.shape[1]
+    onset = ca.repmat(_freestream(alpha_deg), 1, m)
+    if roll_rate is None:
+        return onset
+    return onset + roll_rate * ca.vertcat(ca.DM.zeros(1, m), points[2, :], -points[1, :])
 
 
 class _Parameters:
@@ -144,23 +178,42 @@ class _Parameters:
 
 # The symbolic pieces are pure functions of the mesh: each of the three compiled functions uses
 # them, so they are built once per mesh, not three times.
-@functools.lru_cache(maxsize=8)
-def _lattice_function(layout: Layout) -> ca.Function:
+@functools.lru_cache(maxsize=16)
+def _lattice_function(layout: Layout, flow: bool = False) -> ca.Function:
     """(z, parameters) -> vortex vertices, collocation and force points, the panels' unit
-    normals, and the four point sets' derivatives w.r.t. z = [u; u'; phi] (3N)."""
+    normals, and the four point sets' derivatives w.r.t. z = [u; u'; phi] (3N). The flow model
+    adds the input control (N (k + 1)) and the four point sets' derivatives along it (3M, 1),
+    and the stations' leading edges' and quarter-chord points' derivatives w.r.t. z."""
     params = _Parameters(layout)
     z = ca.SX.sym("z", 3 * layout.n)
     lat = params.lattice(z)
     outputs = [lat.left, lat.right, lat.collocation, lat.center]
     jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
-    return ca.Function("wing_lattice", [z, *params.inputs], [*outputs, lat.normal, *jacobians])
+    if not flow:
+        return ca.Function("wing_lattice", [z, *params.inputs], [*outputs, lat.normal, *jacobians])
+    control = ca.SX.sym("control", params.camber.shape[0])
+    along = [ca.jtimes(ca.vec(out), params.camber, control) for out in outputs]
+    stations = [ca.jacobian(ca.vec(out), z) for out in (lat.leading_edge, lat.quarter_chord)]
+    return ca.Function(
+        "wing_flow_lattice",
+        [z, *params.inputs, control],
+        [*outputs, lat.normal, *jacobians, *along, *stations],
+    )
 
 
-def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep: ca.SX):
+def _panel_loads(
+    lat: Lattice,
+    g: ca.SX,
+    alpha_deg: ca.SX,
+    induced: ca.SX,
+    sweep: ca.SX,
+    roll_rate: ca.SX | None = None,
+):
     """Per-panel forces per unit q (Kutta-Joukowski F = rho (V_local x l) Gamma = 2 q (V_hat_local
-    x l) g) and their moments about the elastic axis: ((3, M) force [m^2], (5M,) loads)."""
+    x l) g) and their moments about the elastic axis: ((3, M) force [m^2], (5M,) loads); with a
+    roll rate (the flow model) its onset and the moments about x too ((6M,) loads)."""
     m = lat.leg.shape[1]
-    v_local = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced, 3, m)
+    v_local = _onset(alpha_deg, lat.center, roll_rate) + ca.reshape(induced, 3, m)
     leg, g_row = lat.leg, g.T
     force = 2 * ca.vertcat(
         (v_local[1, :] * leg[2, :] - v_local[2, :] * leg[1, :]) * g_row,
@@ -177,18 +230,22 @@ def _panel_loads(lat: Lattice, g: ca.SX, alpha_deg: ca.SX, induced: ca.SX, sweep
     )
     torque = e_s[0] * moment[0, :] + e_s[1] * moment[1, :]
     loads = ca.vertcat(force[0, :].T, force[1, :].T, force[2, :].T, (force[2, :] * arm).T, torque.T)
+    if roll_rate is not None:
+        loads = ca.vertcat(loads, moment[0, :].T)
     return force, loads
 
 
-@functools.lru_cache(maxsize=8)
-def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
+@functools.lru_cache(maxsize=16)
+def _aero_function(layout: Layout, with_jacobians: bool, flow: bool = False) -> ca.Function:
     """Tangency residuals and per-panel loads given the induced velocities.
 
     Outputs: tangency (M,) [-]; loads (5M,) per unit q (see _LOADS). With `with_jacobians` also
     their partial derivatives w.r.t. w = [u; u'; phi; g] (the induced velocities held fixed: for
     tangency that leaves the normal's rotation), the loads' w.r.t. the induced velocities at the
     force points, and both w.r.t. alpha. (Tangency's derivative through the induced velocity is
-    n . d(induced), which `vlm.normal_source_columns` gives directly.)
+    n . d(induced), which `vlm.normal_source_columns` gives directly.) The flow model adds the
+    inputs roll_rate and control, the rolling moments (loads 6M), and with `with_jacobians`
+    both outputs' derivatives along the control and w.r.t. the roll rate.
     """
     m = layout.n_panels
     params = _Parameters(layout)
@@ -197,9 +254,12 @@ def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
     alpha_deg = ca.SX.sym("alpha")
     induced_tangency = ca.SX.sym("induced_tangency", 3 * m)
     induced_forces = ca.SX.sym("induced_forces", 3 * m)
+    roll_rate = ca.SX.sym("roll_rate")
+    control = ca.SX.sym("control", params.camber.shape[0])
     lat = params.lattice(z)
-    _, loads = _panel_loads(lat, g, alpha_deg, induced_forces, params.sweep)
-    v_collocation = ca.repmat(_freestream(alpha_deg), 1, m) + ca.reshape(induced_tangency, 3, m)
+    rate = roll_rate if flow else None
+    _, loads = _panel_loads(lat, g, alpha_deg, induced_forces, params.sweep, rate)
+    v_collocation = _onset(alpha_deg, lat.collocation, rate) + ca.reshape(induced_tangency, 3, m)
     tangency = ca.sum1(v_collocation * lat.normal).T
     outputs = [tangency, loads]
     if with_jacobians:
@@ -211,11 +271,18 @@ def _aero_function(layout: Layout, with_jacobians: bool) -> ca.Function:
             ca.jacobian(tangency, alpha_deg),
             ca.jacobian(loads, alpha_deg),
         ]
-    return ca.Function(
-        "aero_glue" if with_jacobians else "aero_glue_values",
-        [z, g, *params.inputs, alpha_deg, induced_tangency, induced_forces],
-        outputs,
-    )
+        if flow:
+            outputs += [
+                ca.jtimes(tangency, params.camber, control),
+                ca.jtimes(loads, params.camber, control),
+                ca.jacobian(tangency, roll_rate),
+                ca.jacobian(loads, roll_rate),
+            ]
+    inputs = [z, g, *params.inputs, alpha_deg, induced_tangency, induced_forces]
+    name = "aero_glue" if with_jacobians else "aero_glue_values"
+    if flow:
+        return ca.Function(f"flow_{name}", [*inputs, roll_rate, control], outputs)
+    return ca.Function(name, inputs, outputs)
 
 
 def _outboard_sum(strip_rows: ca.MX) -> ca.MX:
@@ -279,6 +346,12 @@ class _Beam:
         """(2(N-1), 1) the q-proportional part of the bending and torsion equations."""
         torque = self._outboard(loads, 4) - deformed * heave * self.axis_force(loads)
         return self.rows(self.bending(loads), torque)
+
+    def load_rows_along(self, loads_along: ca.MX, heave: ca.MX, deformed: ca.MX) -> ca.MX:
+        """(2(N-1), 1) d(load_rows) along a parameter the heave does not depend on (alpha, the
+        control direction, the roll rate), from the loads' derivative along it."""
+        torque = self._outboard(loads_along, 4) - deformed * heave * self.axis_force(loads_along)
+        return self.rows(self.bending(loads_along), torque)
 
     def load_rows_jacobian(
         self, loads: ca.MX, loads_x: ca.MX, heave: ca.MX, deformed: ca.MX, heave_columns: ca.DM
@@ -346,13 +419,16 @@ def _per_field_point(g_dfield: ca.MX, m: int, rows_per_point: int) -> ca.MX:
 
 
 class _Symbols:
-    """Symbolic unknowns and parameters of one mesh, split into named parts."""
+    """Symbolic unknowns and parameters of one mesh, split into named parts (the flow model's
+    too, with `flow`)."""
 
-    def __init__(self, layout: Layout) -> None:
+    def __init__(self, layout: Layout, flow: bool = False) -> None:
         self.layout = layout
+        self.flow = flow
         self.m = layout.n_panels
         self.x = ca.MX.sym("x", layout.n_unknowns)
-        self.p = ca.MX.sym("p", layout.n_parameters)
+        n_parameters = layout.n_parameters + (layout.n_flow_parameters if flow else 0)
+        self.p = ca.MX.sym("p", n_parameters)
         self.z = self.x[layout.structure]
         self.heave = self.x[layout.heave]
         self.circulation = self.x[layout.circulation]
@@ -369,24 +445,49 @@ class _Symbols:
             self.deformed,
         ) = layout.split(self.p)
         self.geometry_inputs = [self.y, self.chord, self.ea, self.jig, self.camber, self.sweep]
+        self.flow_inputs: list[ca.MX] = []
+        if flow:
+            (
+                self.image,
+                self.image_jacobian,
+                self.roll_rate,
+                self.control,
+                self.direction,
+            ) = layout.split_flow(self.p)
+            self.flow_inputs = [self.roll_rate, self.control]
         self.beam = _Beam(layout, self.y, self.ei, self.gj, self.sweep)
         # The horseshoe of panel p induces nothing of its bound leg at its own force point.
         self.all_bound_legs = ca.DM.ones(self.m, self.m)
         self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
 
     def lattice(self) -> tuple[ca.MX, ...]:
-        """left, right, collocation, center, normal, and the point sets' derivatives w.r.t. z."""
-        return tuple(_lattice_function(self.layout)(self.z, *self.geometry_inputs))  # type: ignore[arg-type]
+        """left, right, collocation, center, normal, and the point sets' derivatives w.r.t. z
+        (the flow model's outputs too)."""
+        inputs = [*self.geometry_inputs, *([self.control] if self.flow else [])]
+        return tuple(_lattice_function(self.layout, self.flow)(self.z, *inputs))  # type: ignore[arg-type]
 
     def aero(self, with_jacobians: bool, induced_tangency: ca.MX, induced_forces: ca.MX):
-        return _aero_function(self.layout, with_jacobians)(
+        return _aero_function(self.layout, with_jacobians, self.flow)(
             self.z,
             self.circulation,
             *self.geometry_inputs,
             self.alpha_deg,
             induced_tangency,
             induced_forces,
+            *self.flow_inputs,
         )
+
+    def sources(self, field: ca.MX, weights: ca.DM, left: ca.MX, right: ca.MX, normal=None):
+        """The horseshoes' induced velocities and derivatives at `field`: along the normals
+        (`vlm.normal_source_columns`) when given, else the full vectors; the flow model's with
+        the image's parameters."""
+        m, g_row = self.m, self.circulation.T
+        image = [self.image, self.image_jacobian] if self.flow else []
+        if normal is not None:
+            columns = flow_normal_source_columns(m) if self.flow else normal_source_columns(m)
+            return columns(field, normal, weights, left, right, g_row, *image)
+        columns = flow_source_columns(m) if self.flow else source_columns(m)
+        return columns(field, weights, left, right, g_row, *image)
 
     def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
         """r0 and r1 from the aerodynamic outputs."""
@@ -413,6 +514,17 @@ class _Symbols:
             ca.cos(alpha) * ca.sum1(loads[2 * m : 3 * m, :]) - ca.sin(alpha) * ca.sum1(loads[:m, :])
         )
 
+    def roll(self, loads: ca.MX) -> ca.MX:
+        """Twice the right half's rolling moment about x per unit q [m^3], 2 sum (y Fz - z Fy)
+        (flow model): both halves' in the antisymmetric flow (image -1), where the image rolls
+        as the right half does; with image_jacobian -1 about a symmetric state, the derivatives
+        of both halves' for the antisymmetric disturbance (`solver.vlm`)."""
+        m = self.m
+        return 2 * ca.sum1(loads[_ROLL * m : (_ROLL + 1) * m, :])
+
+
+_Kernel = tuple[ca.MX, ca.MX, ca.MX]  # the induced velocities' d/d(field, left, right points)
+
 
 def _lattice_induced(
     sym: _Symbols,
@@ -425,17 +537,17 @@ def _lattice_induced(
     right_z: ca.MX,
     collocation_z: ca.MX,
     center_z: ca.MX,
-) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
+) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX, _Kernel, _Kernel]:
     """The lattice's induced velocities and their derivatives w.r.t. x = [z; g]: at the
     collocation points (3M,) with the normal component's derivative (M, nx), at the force
-    points (3M,) with theirs (3M, nx)."""
+    points (3M,) with theirs (3M, nx); and the kernels' point derivatives at both (the flow
+    model's control direction moves the points too)."""
     m = sym.m
-    g_row = sym.circulation.T
-    ind_t, infl_t, dfield_t, dleft_t, dright_t = normal_source_columns(m)(
-        collocation, normal, sym.all_bound_legs, left, right, g_row
+    ind_t, infl_t, dfield_t, dleft_t, dright_t = sym.sources(
+        collocation, sym.all_bound_legs, left, right, normal
     )
-    ind_f, infl_f, dfield_f, dleft_f, dright_f = source_columns(m)(
-        center, sym.no_self_bound_leg, left, right, g_row
+    ind_f, infl_f, dfield_f, dleft_f, dright_f = sym.sources(
+        center, sym.no_self_bound_leg, left, right
     )
     # Normal induced velocities at the collocation points and induced velocities at the force
     # points, w.r.t. x = [z; g].
@@ -446,7 +558,8 @@ def _lattice_induced(
     ind_f_x = ca.horzcat(
         _induced_derivative(dfield_f, dleft_f, dright_f, center_z, left_z, right_z, m), infl_f
     )
-    return ind_t, normal_ind_t_x, ind_f, ind_f_x
+    kernels = (dfield_t, dleft_t, dright_t), (dfield_f, dleft_f, dright_f)
+    return ind_t, normal_ind_t_x, ind_f, ind_f_x, *kernels
 
 
 def _strip_induced(sym: _Symbols) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
@@ -534,16 +647,26 @@ def _induced_at_points(
     return ind_t, ind_f
 
 
-def build_coupled_function(layout: Layout) -> ca.Function:
+def build_coupled_function(layout: Layout, flow: bool = False) -> ca.Function:
     """(x, p) -> r0, r1, the non-zero row blocks of J0 and J1 (dense), and for trim r0_alpha,
     r1_alpha (per degree), lift (per unit q), lift_x (1, n) and lift_alpha; for design the
     near-field drag (per unit q) and drag_x (1, n). See the module docstring.
+
+    The flow model (`flow`) takes the flow parameters after the model's (`solver.layout`) and
+    adds, for control surfaces, r0_control, r1_control and lift_control along the control
+    direction (per radian), the rolling moment (twice the right half's, per unit q,
+    `_Symbols.roll`), roll_x (1, n) and roll_control; for roll r0_rate, r1_rate and roll_rate,
+    per unit roll rate p / V [rad/m]; and for a roll answer's linearised loads the panel loads'
+    derivatives (6M, see _LOADS, per unit q) along the direction parameter in x, the control
+    and the roll rate, the force points' (3M) along the direction and the control, and the
+    stations' leading edges and quarter-chord points' (3N) along the direction (the camber
+    moves neither).
 
     The Jacobians leave as row blocks (`solver.layout`): J0's structure rows (3N, n) and
     tangency rows (M, n), J1's load rows (2(N-1), n), its only non-zero ones. CasADi stores
     matrices by columns, so stacking row blocks into one matrix would transpose every block and
     the result; the caller places the blocks (`solver.compiled`), a plain copy."""
-    sym = _Symbols(layout)
+    sym = _Symbols(layout, flow)
     m, n, nx = sym.m, layout.n, layout.n_unknowns
     (
         left,
@@ -555,14 +678,27 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         right_z,
         collocation_z,
         center_z,
+        *flow_lattice,
     ) = sym.lattice()
     if layout.aerodynamics == "strip":
+        if flow:
+            raise ValueError("the flow model (control surfaces, roll) is the lattice's")
         ind_t, normal_ind_t_x, ind_f, ind_f_x = _strip_induced(sym)
+        tangency_kernel = forces_kernel = (ca.MX(), ca.MX(), ca.MX())
     else:
-        ind_t, normal_ind_t_x, ind_f, ind_f_x = _lattice_induced(
-            sym, left, right, collocation, center, normal, left_z, right_z, collocation_z, center_z
+        ind_t, normal_ind_t_x, ind_f, ind_f_x, tangency_kernel, forces_kernel = _lattice_induced(
+            sym,
+            left,
+            right,
+            collocation,
+            center,
+            normal,
+            left_z,
+            right_z,
+            collocation_z,
+            center_z,
         )
-    tangency, loads, tangency_w, loads_w, loads_ind, tangency_a, loads_a = sym.aero(
+    tangency, loads, tangency_w, loads_w, loads_ind, tangency_a, loads_a, *flow_aero = sym.aero(
         True, ind_t, ind_f
     )
     tangency_x = tangency_w + normal_ind_t_x
@@ -591,6 +727,21 @@ def build_coupled_function(layout: Layout) -> ca.Function:
     )
     drag = sym.drag(loads)
     drag_x = sym.drag(loads_x)
+    flow_outputs = (
+        _flow_outputs(
+            sym,
+            flow_lattice,
+            flow_aero,
+            loads,
+            loads_x,
+            loads_ind,
+            tangency_kernel,
+            forces_kernel,
+            center_z,
+        )
+        if flow
+        else {}
+    )
     outputs = [
         r0,
         r1,
@@ -604,9 +755,10 @@ def build_coupled_function(layout: Layout) -> ca.Function:
         lift_alpha,
         drag,
         drag_x,
+        *flow_outputs.values(),
     ]
     return ca.Function(
-        f"flexwing_coupled_{model_tag(layout)}",
+        f"flexwing_{_kind(flow)}coupled_{model_tag(layout)}",
         [sym.x, sym.p],
         [ca.densify(out) for out in outputs],
         ["x", "p"],
@@ -623,6 +775,7 @@ def build_coupled_function(layout: Layout) -> ca.Function:
             "lift_alpha",
             "drag",
             "drag_x",
+            *flow_outputs,
         ],
     )
 
@@ -633,38 +786,110 @@ def model_tag(layout: Layout) -> str:
     return f"{layout.n}_{layout.chordwise}{strip}"
 
 
+def _flow_outputs(
+    sym: _Symbols,
+    flow_lattice: list[ca.MX],
+    flow_aero: list[ca.MX],
+    loads: ca.MX,
+    loads_x: ca.MX,
+    loads_ind: ca.MX,
+    tangency_kernel: tuple[ca.MX, ca.MX, ca.MX],
+    forces_kernel: tuple[ca.MX, ca.MX, ca.MX],
+    center_z: ca.MX,
+) -> dict[str, ca.MX]:
+    """The flow model's outputs (`build_coupled_function`), by name."""
+    layout, m, n = sym.layout, sym.m, sym.layout.n
+    left_c, right_c, collocation_c, center_c, leading_edge_z, quarter_chord_z = flow_lattice
+    tangency_c, loads_c, tangency_p, loads_p = flow_aero
+    # Along the control direction: the geometry's own part, and the induced velocities' by the
+    # chain rule through the lattice's points (as for z).
+    tangency_c = tangency_c + _induced_derivative(
+        *tangency_kernel, collocation_c, left_c, right_c, m, 1
+    )
+    loads_c = loads_c + ca.mtimes(
+        loads_ind, _induced_derivative(*forces_kernel, center_c, left_c, right_c, m)
+    )
+
+    def r0_along(tangency_along: ca.MX) -> ca.MX:
+        return ca.vertcat(ca.MX(3 * n, 1), tangency_along)
+
+    def r1_along(loads_along: ca.MX) -> ca.MX:
+        return ca.vertcat(
+            ca.MX(3 + layout.n_strips, 1),
+            sym.beam.load_rows_along(loads_along, sym.heave, sym.deformed),
+            ca.MX(m, 1),
+        )
+
+    structure_direction = sym.direction[layout.structure]
+    return {
+        "r0_control": r0_along(tangency_c),
+        "r1_control": r1_along(loads_c),
+        "lift_control": sym.lift(loads_c),
+        "roll": sym.roll(loads),
+        "roll_x": sym.roll(loads_x),
+        "roll_control": sym.roll(loads_c),
+        "r0_rate": r0_along(tangency_p),
+        "r1_rate": r1_along(loads_p),
+        "roll_rate": sym.roll(loads_p),
+        "loads_along": ca.mtimes(loads_x, sym.direction),
+        "loads_control": loads_c,
+        "loads_rate": loads_p,
+        "center_along": ca.mtimes(center_z, structure_direction),
+        "center_control": center_c,
+        "leading_edge_along": ca.mtimes(leading_edge_z, structure_direction),
+        "quarter_chord_along": ca.mtimes(quarter_chord_z, structure_direction),
+    }
+
+
+def _kind(flow: bool) -> str:
+    """The functions' name prefix: the flow model's are `flexwing_flow_*`."""
+    return "flow_" if flow else ""
+
+
 def _induced_values(
     sym: _Symbols, left: ca.MX, right: ca.MX, field: ca.MX, weights: ca.DM
 ) -> ca.MX:
+    if sym.flow:
+        return flow_induced_velocities(sym.m)(
+            field, weights, left, right, sym.circulation.T, sym.image
+        )
     induced = induced_velocities(sym.m)
     return induced(field, weights, left, right, sym.circulation.T)
 
 
-def build_residual_function(layout: Layout) -> ca.Function:
+def build_residual_function(layout: Layout, flow: bool = False) -> ca.Function:
     """(x, p) -> (r0, r1, lift): the residual alone, without derivatives (path correctors,
-    checks), and the lift per unit q [m^2] (the trimmed system's extra row)."""
-    sym = _Symbols(layout)
+    checks), and the lift per unit q [m^2] (the trimmed system's extra row). The flow model's
+    adds the rolling moment per unit q [m^3] (`_Symbols.roll`; the free-roll system's row)."""
+    sym = _Symbols(layout, flow)
     left, right, collocation, center, *_ = sym.lattice()
     ind_t, ind_f = _induced_at_points(sym, left, right, collocation, center)
     tangency, loads = sym.aero(False, ind_t, ind_f)
     r0, r1 = sym.residual(tangency, loads)
+    outputs = [ca.densify(r0), ca.densify(r1), ca.densify(sym.lift(loads))]
+    names = ["r0", "r1", "lift"]
+    if flow:
+        outputs.append(ca.densify(sym.roll(loads)))
+        names.append("roll")
     return ca.Function(
-        f"flexwing_residual_{model_tag(layout)}",
+        f"flexwing_{_kind(flow)}residual_{model_tag(layout)}",
         [sym.x, sym.p],
-        [ca.densify(r0), ca.densify(r1), ca.densify(sym.lift(loads))],
+        outputs,
         ["x", "p"],
-        ["r0", "r1", "lift"],
+        names,
     )
 
 
-def build_panel_loads_function(layout: Layout) -> ca.Function:
+def build_panel_loads_function(layout: Layout, flow: bool = False) -> ca.Function:
     """(x, p) -> per-unit-q panel forces and moments, force points and quarter-chord points.
 
     Outputs: force (3, M) [m^2] (times q gives N), torque (1, M) [m^3] ((r x F) . e_s about the
     undeformed EA, times q gives N m), center (3, M) [m] force points, quarter_chord (3, N) [m]
-    stations' quarter-chord points; right half-wing, panels i k + j.
+    stations' quarter-chord points; right half-wing, panels i k + j. The flow model's (its
+    parameters, its roll rate's onset) adds leading_edge (3, N) [m], the stations' deformed
+    leading edges (the chord axis is their difference over a quarter chord: hinge lines).
     """
-    sym = _Symbols(layout)
+    sym = _Symbols(layout, flow)
     m = sym.m
     left, right, _, center, *_ = sym.lattice()
     if layout.aerodynamics == "strip":
@@ -674,20 +899,90 @@ def build_panel_loads_function(layout: Layout) -> ca.Function:
     params = _Parameters(layout)
     z, g, alpha = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m), ca.SX.sym("alpha")
     induced = ca.SX.sym("induced", 3 * m)
+    roll_rate = ca.SX.sym("roll_rate")
     lat = params.lattice(z)
-    force, loads = _panel_loads(lat, g, alpha, induced, params.sweep)
-    panel = ca.Function(
-        "panel_forces",
-        [z, g, *params.inputs, alpha, induced],
-        [force, loads[4 * m :].T, lat.quarter_chord],
-    )
-    force_mx, torque_mx, quarter_mx = panel(
-        sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f
-    )
+    force, loads = _panel_loads(lat, g, alpha, induced, params.sweep, roll_rate if flow else None)
+    outputs = [force, loads[4 * m : 5 * m].T, lat.quarter_chord]
+    names = ["force", "torque", "center", "quarter_chord"]
+    inputs = [z, g, *params.inputs, alpha, induced]
+    arguments = [sym.z, sym.circulation, *sym.geometry_inputs, sym.alpha_deg, ind_f]
+    if flow:
+        outputs.append(lat.leading_edge)
+        names.append("leading_edge")
+        inputs.append(roll_rate)
+        arguments.append(sym.roll_rate)
+    panel = ca.Function("flow_panel_forces" if flow else "panel_forces", inputs, outputs)
+    force_mx, torque_mx, *stations = panel(*arguments)
     return ca.Function(
-        f"flexwing_panel_loads_{model_tag(layout)}",
+        f"flexwing_{_kind(flow)}panel_loads_{model_tag(layout)}",
         [sym.x, sym.p],
-        [force_mx, torque_mx, center, quarter_mx],
+        [force_mx, torque_mx, center, *stations],
         ["x", "p"],
-        ["force", "torque", "center", "quarter_chord"],
+        names,
+    )
+
+
+def build_full_span_function(layout: Layout) -> ca.Function:
+    """(x, x_image, p, camber_image) -> the right half's r0, r1 and panel loads when the left
+    half moves on its own: its state x_image (n,) and camber camber_image (N (k + 1),) in the
+    mirrored frame (its heave up, its twist nose-up, its circulation along the mirror image's
+    horseshoes from m(B) to m(A)), the mirror m = diag(1, -1, 1) placing it.
+
+    The full-span model's right half, evaluated without derivatives: with x_image = x and the
+    same camber it is the symmetric model (`build_residual_function`, the parameters' image
+    and image_jacobian ignored). Its derivative along (dx, -dx) at a symmetric state is the
+    antisymmetric linearisation (`solver.vlm`, image_jacobian -1): this function checks it, and
+    the linearised loads of a roll answer, independently of the kernel's hand-written
+    derivatives (tests/solver/test_residual.py). The virtual machine serves it.
+
+    Outputs: r0, r1 (n,); force (3, M) [m^2 per unit q]; torque (1, M) [m^3 per unit q] about the
+    undeformed elastic axis; roll (1, M) [m^3 per unit q] (r x F) . e_x; center (3, M) [m];
+    quarter_chord, leading_edge (3, N) [m] (`build_panel_loads_function`).
+    """
+    sym = _Symbols(layout, flow=True)
+    m = sym.m
+    x_image = ca.MX.sym("x_image", layout.n_unknowns)
+    camber_image = ca.MX.sym("camber_image", sym.camber.shape[0])
+    left, right, collocation, center, *_ = sym.lattice()
+    image_inputs = [sym.y, sym.chord, sym.ea, sym.jig, camber_image, sym.sweep]
+    image_left, image_right, *_ = _lattice_function(layout)(
+        x_image[layout.structure], *image_inputs
+    )
+    mirror = ca.DM([1.0, -1.0, 1.0])
+    # The left half's horseshoes, as sources of their own: from m(B) to m(A).
+    sources_left = ca.repmat(mirror, 1, m) * image_right
+    sources_right = ca.repmat(mirror, 1, m) * image_left
+    g_image = x_image[layout.circulation].T
+    own = flow_induced_velocities(m, with_image=False)
+
+    def induced(field: ca.MX, weights: ca.DM) -> ca.MX:
+        return own(field, weights, left, right, sym.circulation.T, 0) + own(
+            field, sym.all_bound_legs, sources_left, sources_right, g_image, 0
+        )
+
+    ind_t = induced(collocation, sym.all_bound_legs)
+    ind_f = induced(center, sym.no_self_bound_leg)
+    tangency, loads = sym.aero(False, ind_t, ind_f)
+    r0, r1 = sym.residual(tangency, loads)
+    force = ca.horzcat(*[loads[c * m : (c + 1) * m] for c in range(3)]).T
+    params = _Parameters(layout)
+    z = ca.SX.sym("z", 3 * layout.n)
+    lat = params.lattice(z)
+    stations = ca.Function("stations", [z, *params.inputs], [lat.quarter_chord, lat.leading_edge])
+    quarter_chord, leading_edge = stations(sym.z, *sym.geometry_inputs)
+    return ca.Function(
+        f"flexwing_flow_full_span_{model_tag(layout)}",
+        [sym.x, x_image, sym.p, camber_image],
+        [
+            ca.densify(r0),
+            ca.densify(r1),
+            force,
+            loads[4 * m : 5 * m].T,
+            loads[_ROLL * m : (_ROLL + 1) * m].T,
+            center,
+            quarter_chord,
+            leading_edge,
+        ],
+        ["x", "x_image", "p", "camber_image"],
+        ["r0", "r1", "force", "torque", "roll", "center", "quarter_chord", "leading_edge"],
     )

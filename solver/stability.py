@@ -43,7 +43,7 @@ import numpy as np
 from solver.evaluation import Evaluation
 from solver.layout import Layout
 
-__all__ = ["NEGLIGIBLE", "beam_response", "divergence_pressure"]
+__all__ = ["NEGLIGIBLE", "beam_response", "divergence_pressure", "reversal_pressure"]
 
 NEGLIGIBLE = 1e-9
 # An eigenvalue counts as real when its imaginary part is this small relative to ||G||.
@@ -72,20 +72,76 @@ def divergence_pressure(
     `beam`: `beam_response` of this wing (computed here when not given).
     """
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
-    tangency, structure, circulation = (
-        layout.tangency_rows,
-        layout.structure,
-        layout.circulation,
+    return _smallest_pressure(
+        j0, j1, layout, layout.circulation, layout.tangency_rows, beam, evaluation
     )
+
+
+def reversal_pressure(
+    evaluation: Evaluation,
+    layout: Layout,
+    control0: np.ndarray,
+    control1: np.ndarray,
+    measure_x: np.ndarray,
+    measure_control: float,
+    beam: np.ndarray | None = None,
+) -> float | None:
+    """Smallest positive real q [Pa] at which a control's elastic derivative vanishes (control
+    reversal), or None if there is none.
+
+    The elastic derivative of a measure m (lift, rolling moment) per unit q is
+    D(q) = m_c + m_x . dx with (J0 + q J1) dx = -(c0 + q c1): c0, c1 (n,) the control's
+    columns of r0 and r1 (`solver.evaluation.ControlTerms`), m_x (n,) and m_c its gradient and
+    its own derivative. The bordered matrix [[J0 + q J1, c0 + q c1], [m_x, m_c]] has
+    determinant det(J) D(q), so reversal is where it is singular: the generalised eigenvalue
+    problem of divergence with the control's column and the measure's row added. c0 lives in
+    the tangency rows and c1 in the load rows (the camber moves the lattice only), so the
+    border joins the circulations' block and the eigenproblem keeps its size.
+    """
+    n = layout.n_unknowns
+    j0, j1 = np.zeros((n + 1, n + 1)), np.zeros((n + 1, n + 1))
+    j0[:n, :n], j0[:n, n], j0[n, :n], j0[n, n] = (
+        evaluation.jacobian0,
+        control0,
+        measure_x,
+        measure_control,
+    )
+    j1[:n, :n], j1[:n, n] = evaluation.jacobian1, control1
+    if np.any(control0[layout.structure_rows]) or np.any(np.delete(control1, layout.load_rows)):
+        raise ValueError("a control column must leave the beam's equations alone")
+    free = np.r_[np.arange(layout.circulation.start, layout.circulation.stop), n]
+    free_rows = np.r_[np.arange(layout.tangency_rows.start, layout.tangency_rows.stop), n]
+    return _smallest_pressure(j0, j1, layout, free, free_rows, beam, evaluation)
+
+
+def _smallest_pressure(
+    j0: np.ndarray,
+    j1: np.ndarray,
+    layout: Layout,
+    free: np.ndarray | slice,
+    free_rows: np.ndarray | slice,
+    beam: np.ndarray | None,
+    evaluation: Evaluation,
+) -> float | None:
+    """Smallest positive real lambda with j0 + lambda j1 singular, where j1 lives in the load
+    rows and j0's beam rows touch only the structure's unknowns: the structure's block is
+    reduced away (module docstring), `free` and `free_rows` the other unknowns and equations
+    (the circulations and tangency, slices; a border's too, index arrays)."""
+    structure = layout.structure
     try:
         if beam is None:
             beam = beam_response(evaluation, layout)
-        # T_g^{-1} T_s: how the circulations answer a deformation.
-        response = np.linalg.solve(j0[tangency, circulation], j0[tangency, structure])
+        block = (
+            j0[free_rows, free]
+            if isinstance(free, slice) and isinstance(free_rows, slice)
+            else j0[np.ix_(np.asarray(free_rows), np.asarray(free))]
+        )
+        # F^{-1} F_s: how the free unknowns answer a deformation.
+        response = np.linalg.solve(block, j0[free_rows, structure])
     except np.linalg.LinAlgError:
         return None
     loads = j1[layout.load_rows]
-    coupling = loads[:, structure] - loads[:, circulation] @ response
+    coupling = loads[:, structure] - loads[:, free] @ response
     g = -coupling @ beam
     scale = float(np.linalg.norm(g))
     if not math.isfinite(scale) or scale == 0.0:

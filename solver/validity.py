@@ -20,12 +20,18 @@ stands (`Equilibrium.validity`, codes and meanings in `solver.results.FINDING_CO
   The flexible wing's comes from the equilibrium's own tangent, dx/dq = -J^-1 r1 (the residual
   is affine in q), and the lattice's exact lift gradient: dL/dq = l + q (dl/dx) . dx/dq with
   l = L / q. One torsion mode gives 1 / (1 - margin)^2.
+- control_deflection: a control surface acting in the answer (flaps in every symmetric answer,
+  flaps and ailerons in a roll answer) deflected by more than `CONTROL_DEFLECTION`. A roll
+  answer (`roll_findings`) is judged on both wings (`Finding.half`): the left wing's aileron
+  deflects the other way, and its sections' lift falls where the right wing's rises, so either
+  may stall; its near_divergence is the antisymmetric margin.
 
 A pure post-processing step: it reads the answer and never changes one of its numbers.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import typing
 from collections.abc import Sequence
@@ -45,15 +51,27 @@ from solver.results import (
     FindingOnset,
     FindingWhere,
     Panels,
+    RollResponse,
     Stability,
     Stations,
 )
 from solver.system import CoupledSystem
 
-__all__ = ["assess", "lift_sensitivity", "onsets", "section_lift_coefficient"]
+__all__ = [
+    "CONTROL_DEFLECTION",
+    "assess",
+    "lift_sensitivity",
+    "onsets",
+    "roll_findings",
+    "section_lift_coefficient",
+]
 
 # [-] The move, in scaled coordinates, over which `lift_sensitivity` differences the lift.
 _LIFT_STEP = 1e-5
+# [deg] The |deflection| of a plain control surface past which its measured lift falls behind
+# the linear theory's (the lattice's): about 10 deg (Hoerner and Borst, Fluid-Dynamic Lift,
+# 1985, ch. 5; ESDU 97011's empirical flap efficiency). To become a ValidityLimits field.
+CONTROL_DEFLECTION = 10.0
 
 
 @dataclass(frozen=True)
@@ -297,6 +315,37 @@ def _near_divergence(
     ]
 
 
+def _controls(wing: Wing, symmetric_only: bool) -> list[Finding]:
+    """control_deflection for each surface acting in the answer past `CONTROL_DEFLECTION`."""
+    found = []
+    for index, surface in enumerate(wing.control_surfaces):
+        if symmetric_only and not surface.symmetric:
+            continue
+        if not abs(surface.deflection) > CONTROL_DEFLECTION:
+            continue
+        start, end = surface.extent(wing.semispan)
+        found.append(
+            Finding(
+                code="control_deflection",
+                message=(
+                    f"The {surface.kind} {surface.name!r} is deflected {surface.deflection:+.3g} "
+                    f"deg, beyond the {CONTROL_DEFLECTION:.3g} deg up to which a plain flap's "
+                    "lift grows linearly with its deflection as the lattice's does: a real one's "
+                    "falls behind as the flow separates from it, and this answer overstates its "
+                    "lift, its hinge moment and the twist they cause."
+                ),
+                measure="deflection",
+                where="control_surfaces",
+                indices=[index],
+                y=[0.5 * (start + end)],
+                value=float(surface.deflection),
+                limit=CONTROL_DEFLECTION,
+                unit="deg",
+            )
+        )
+    return found
+
+
 def assess(
     system: CoupledSystem,
     flight: OperatingPoint,
@@ -317,7 +366,59 @@ def assess(
         *_twist(stations, limits),
         *_stall(wing, panels, flight.dynamic_pressure, limits),
         *_near_divergence(system, flight, x, evaluation, stability, limits),
+        *_controls(wing, symmetric_only=True),
     ]
+
+
+def _on(half: typing.Literal["right", "left"], findings: list[Finding]) -> list[Finding]:
+    """The findings of one wing of a roll answer, marked and said so."""
+    return [
+        dataclasses.replace(f, half=half, message=f"On the {half} wing: {f.message}")
+        for f in findings
+    ]
+
+
+def roll_findings(response: RollResponse, limits: ValidityLimits) -> list[Finding]:
+    """Every finding about a roll answer, in the order of FINDING_CODES: deflection, twist and
+    stall on each wing (right first), the antisymmetric divergence margin, the surfaces'
+    deflections."""
+    wing, q = response.wing, response.flight.dynamic_pressure
+    found: dict[str, list[Finding]] = {code: [] for code in typing.get_args(FindingCode)}
+    halves: tuple[tuple[typing.Literal["right", "left"], Stations, Panels], ...] = (
+        ("right", response.right, response.right_panels),
+        ("left", response.left, response.left_panels),
+    )
+    for half, stations, panels in halves:
+        on_wing = [
+            *_deflection(wing, stations, limits),
+            *_twist(stations, limits),
+            *_stall(wing, panels, q, limits),
+        ]
+        for finding in _on(half, on_wing):
+            found[finding.code].append(finding)
+    margin = response.stability.margin
+    if margin > limits.divergence_margin:
+        local = response.stability.antisymmetric_divergence_pressure
+        found["near_divergence"].append(
+            Finding(
+                code="near_divergence",
+                message=(
+                    f"q is {100 * margin:.3g} % of the antisymmetric divergence pressure"
+                    + ("" if local is None else f" ({local:.4g} Pa)")
+                    + f", beyond {100 * limits.divergence_margin:.3g} % of it: the roll "
+                    "response is sensitive to every input here."
+                ),
+                measure="margin",
+                where="wing",
+                indices=[],
+                y=[],
+                value=float(margin),
+                limit=float(limits.divergence_margin),
+                unit="-",
+            )
+        )
+    found["control_deflection"] = _controls(wing, symmetric_only=False)
+    return [finding for code in typing.get_args(FindingCode) for finding in found[code]]
 
 
 def onsets(points: Sequence[AirspeedPoint]) -> list[FindingOnset]:

@@ -249,6 +249,9 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
         return bool
     if form == "choice":
         return Literal[spec.choices]  # type: ignore[valid-type]
+    if form == "text":
+        assert spec.limits.le is not None
+        return Annotated[str, Field(min_length=1, max_length=int(spec.limits.le))]
     if form == "per_station":
         return _station_values(_number(spec))
     if form == "positions":

@@ -318,11 +318,13 @@ def _final_inf_pr(sol) -> float | None:
         return None
 
 
-def generate(case: dict) -> dict:
+def generate(case: dict, model_class: type[WingModel] = WingModel) -> dict:
+    """The reference of `case`; `model_class` builds its wing (a subclass gives each section
+    an airfoil of its own: `generate_controls_reference.py`)."""
     if "optimize" in case:
         return generate_design(case)
     extended = any(key in case for key in EXTENDED_KEYS)
-    model = WingModel(case)
+    model = model_class(case)
     N, nc, n = model.N, model.nc, model.n_right
     ys = model.ys
     options = _ipopt_options(case)

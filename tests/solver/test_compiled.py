@@ -3,6 +3,7 @@ bit-identical."""
 
 from __future__ import annotations
 
+import dataclasses
 import fcntl
 import subprocess
 import sys
@@ -289,3 +290,45 @@ def test_a_flag_the_compiler_does_not_take_is_left_out(tmp_path: Path) -> None:
     flags = compiled._flags(str(compiler))
     assert "-fvect-cost-model=dynamic" not in flags
     assert {"-O2", "-ffp-contract=off", "-fno-semantic-interposition"} <= set(flags)
+
+
+def _flow_parameters(n: int) -> np.ndarray:
+    """The flow model's: the rotation about x, a roll rate, a control direction."""
+    layout = Layout(n)
+    control = np.outer(np.linspace(0.0, 1.0, n), [0.0, -0.5])
+    return np.concatenate([_parameters(n), layout.flow_parameters(-1.0, -1.0, 0.03, control)])
+
+
+def test_the_flow_model_has_a_library_of_its_own_with_the_virtual_machines_bits(
+    private_cache: Path,
+) -> None:
+    """The flow model (control surfaces, roll) compiles into its own library, keyed apart
+    (flow version), and leaves the symmetric model's alone; its compiled code gives its
+    virtual machine's bits, every output of `evaluate_with_controls` included."""
+    layout = Layout(N_SMALL)
+    x, p = _random_state(N_SMALL), _flow_parameters(N_SMALL)
+    model = model_for(layout, flow=True)
+    assert model.flow and model is not model_for(layout)
+    on_vm = model.evaluate_with_controls(x, p)
+    roll_vm = model.residual_with_roll(x, p)
+    loads_vm = model.panel_loads(x, p)
+    model.wait_compiled(timeout=180)
+    assert model.compiled
+    (library,) = private_cache.glob("*-flow-*.so")
+    assert f"model{compiled.MODEL_VERSION}-flow" in library.name
+    on_c = model.evaluate_with_controls(x, p)
+    pairs = [
+        *zip(
+            (on_vm[0].r0, on_vm[0].r1, on_vm[0].jacobian0, on_vm[0].jacobian1),
+            (on_c[0].r0, on_c[0].r1, on_c[0].jacobian0, on_c[0].jacobian1),
+            strict=True,
+        ),
+        *(
+            (getattr(on_vm[2], f.name), getattr(on_c[2], f.name))
+            for f in dataclasses.fields(on_c[2])
+        ),
+        *zip(roll_vm, model.residual_with_roll(x, p), strict=True),
+        *zip(loads_vm, model.panel_loads(x, p), strict=True),
+    ]
+    for a, b in pairs:
+        np.testing.assert_array_equal(b, a)

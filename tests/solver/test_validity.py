@@ -373,3 +373,61 @@ def test_judging_validity_never_changes_a_number_of_the_answer(limits, velocity,
     assert _numbers(judged) == _numbers(plain)
     assert_as_by_hand(judged, limits)
     assert dataclasses.replace(judged, validity=[]).totals == plain.totals
+
+
+# ------------------------------------------------------------------------ control surfaces
+
+
+@pytest.mark.parametrize(("deflection", "found"), [(10.0, False), (-10.5, True), (15.0, True)])
+def test_a_flap_deflected_past_the_linear_range_is_a_finding(deflection, found):
+    """control_deflection at |deflection| > 10 deg (validity.CONTROL_DEFLECTION), with the
+    surface's index and the middle of its extent; an aileron, which a symmetric answer does
+    not deflect, is never one there."""
+    surfaces = [
+        {"name": "flap", "start": 0.0, "end": 0.4, "hinge": 0.75, "deflection": deflection},
+        {
+            "name": "ail",
+            "start": 0.5,
+            "end": 0.9,
+            "hinge": 0.75,
+            "deflection": 20.0,
+            "kind": "aileron",
+        },
+    ]
+    wing = solver.Wing.create(**study_arrays(13), control_surfaces=surfaces)
+    answer = solver.solve(wing, flight(8.0, 0.0), options=SolverOptions(chordwise_panels=3))
+    findings = [f for f in answer.validity if f.code == "control_deflection"]
+    if not found:
+        assert findings == []
+        return
+    (finding,) = findings
+    assert finding.where == "control_surfaces" and finding.indices == [0]
+    assert finding.value == deflection and finding.limit == 10.0 and finding.unit == "deg"
+    assert finding.y == [pytest.approx(1.0)]
+    assert finding.half is None
+
+
+def test_a_roll_answer_is_judged_on_both_wings():
+    """A 15 deg aileron at 8 m/s on the study's wing with cl_max 0.4: the right wing's aileron
+    strips pass +0.4 and the left wing's -0.4 (its trailing edge up), each found on its own
+    wing, in the order of the codes, the deflection once; the findings never change the
+    answer's numbers."""
+    surface = {
+        "name": "ail",
+        "start": 0.5,
+        "end": 0.9,
+        "hinge": 0.75,
+        "deflection": 15.0,
+        "kind": "aileron",
+    }
+    wing = solver.Wing.create(**study_arrays(13), control_surfaces=[surface], cl_max=0.4)
+    options = SolverOptions(chordwise_panels=3)
+    answer = solver.roll(wing, flight(8.0, 0.0), options)
+    stalls = [f for f in answer.validity if f.code == "section_stall"]
+    assert {f.half for f in stalls} == {"right", "left"}
+    assert all(f.message.startswith(f"On the {f.half} wing") for f in stalls)
+    assert [f.code for f in answer.validity][-1] == "control_deflection"
+    relaxed = solver.roll(
+        wing, flight(8.0, 0.0), dataclasses.replace(options, validity=ValidityLimits(cl_max=5.0))
+    )
+    assert relaxed.rolling_moment == answer.rolling_moment
