@@ -56,6 +56,8 @@ OPERATIONS = {
     "sweep": Operation("sweep", "sweep_timeout", "completed"),
     "optimize": Operation("optimize", "optimize_timeout", "optimum"),
     "flutter": Operation("flutter", "flutter_timeout", "analysed"),
+    "roll": Operation("roll", "solve_timeout", "rolled"),
+    "controls": Operation("controls", "sweep_timeout", "completed"),
 }
 
 

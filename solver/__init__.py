@@ -76,7 +76,15 @@ from solver.inputs import (
 from solver.layout import Layout
 from solver.mass import ConcentratedMass, MassModel
 from solver.modes import natural_modes
-from solver.operations import OPERATIONS, FlutterInput, OptimizeInput, SolveInput, SweepInput
+from solver.operations import (
+    OPERATIONS,
+    ControlsInput,
+    FlutterInput,
+    OptimizeInput,
+    RollInput,
+    SolveInput,
+    SweepInput,
+)
 from solver.optimize import optimize
 from solver.results import (
     FINDING_CODES,
@@ -158,7 +166,9 @@ __all__ = [
     "FlightCondition",
     "flutter",
     "FlutterInfo",
+    "ControlsInput",
     "FlutterInput",
+    "RollInput",
     "FlutterOnset",
     "FlutterOptions",
     "FlutterPoint",

@@ -249,6 +249,13 @@ def hinge_nodes(x: np.ndarray) -> float:
     return float(x[-2]) if x.size > 2 else 0.0
 
 
+def check_resolution(surfaces: Sequence[ControlSurface], x: np.ndarray) -> None:
+    """Refuses (InvalidInput naming `control_surfaces[i].hinge`) a surface whose hinge the
+    chordwise nodes x (k + 1,) [-] leave no whole panel aft of: its camber line would vanish."""
+    for index, surface in enumerate(surfaces):
+        _check_resolution(surface, index, x)
+
+
 def _check_resolution(surface: ControlSurface, index: int, x: np.ndarray) -> None:
     aftmost = hinge_nodes(x)
     if surface.hinge > aftmost + _ON_NODE:

@@ -54,10 +54,11 @@ from solver.results import (
     ControlSweepPoint,
     LinearDivergence,
     PointFailure,
+    Progress,
     Reversal,
     ReversalSummary,
 )
-from solver.roll import hinge_moments, without_aileron_deflections
+from solver.roll import hinge_moments, operating_point, without_aileron_deflections
 from solver.solve import solve
 from solver.stability import beam_response, divergence_pressure, reversal_pressure
 from solver.system import CoupledSystem, Flow
@@ -311,9 +312,6 @@ def _at_flight(
     ]
 
 
-_WHAT = "control effectiveness"
-
-
 def control_effectiveness(
     wing: Wing, flight: FlightCondition | OperatingPoint, options: SolverOptions | None = None
 ) -> list[ControlEffectiveness]:
@@ -326,7 +324,7 @@ def control_effectiveness(
     options = options or SolverOptions()
     if not wing.control_surfaces:
         raise InvalidInput("control_surfaces", "the wing has no control surfaces")
-    point = flight if isinstance(flight, OperatingPoint) else flight.at_given_alpha(_WHAT)
+    point = flight if isinstance(flight, OperatingPoint) else operating_point(wing, flight, options)
     base = without_aileron_deflections(wing)
     with numerical_failures_as(point.velocity):
         return _at_flight(base, point, options, _classical(base, options)[0])
@@ -335,13 +333,20 @@ def control_effectiveness(
 def control_sweep(
     wing: Wing,
     velocities: Sequence[float],
-    alpha: float,
+    alpha: float | None,
     density: float,
     options: SolverOptions | None = None,
+    *,
+    lift: float | None = None,
+    progress: Progress | None = None,
 ) -> ControlSweep:
     """`control_effectiveness` at each airspeed [m/s], in the given order, with each surface's
     reversal two ways (the linear eigenvalue, and where the sweep's elastic derivative changes
-    sign) and which comes first, reversal or the divergence of its problem."""
+    sign) and which comes first, reversal or the divergence of its problem.
+
+    alpha: [deg] the jig's angle of attack at every airspeed, or None with `lift` [N]: trimmed,
+        each airspeed at the alpha at which the wing (ailerons neutral) carries it.
+    progress: called as `progress(done, total)` as each airspeed is answered."""
     started = time.perf_counter()
     options = options or SolverOptions()
     if not wing.control_surfaces:
@@ -351,9 +356,11 @@ def control_sweep(
         classical, antisymmetric = _classical(base, options)
     points: list[ControlSweepPoint] = []
     for velocity in velocities:
+        if progress is not None and points:
+            progress(len(points), len(velocities))
         try:
-            flight = OperatingPoint(velocity, alpha, density)
             with numerical_failures_as(velocity):
+                flight = _point(base, velocity, alpha, lift, density, options)
                 controls = _at_flight(base, flight, options, classical)
         except SolverError as error:
             status: Literal["no_equilibrium", "not_converged"] = (
@@ -363,6 +370,8 @@ def control_sweep(
             points.append(ControlSweepPoint(velocity, status, [], PointFailure(str(error), fold)))
             continue
         points.append(ControlSweepPoint(velocity, "equilibrium", controls, None))
+    if progress is not None:
+        progress(len(points), len(velocities))
     summaries = [
         _summary(base, index, classical[index], points, density)
         for index in range(len(base.control_surfaces))
@@ -380,6 +389,21 @@ def control_sweep(
         ),
         solver=AirspeedSweepInfo(time.perf_counter() - started),
     )
+
+
+def _point(
+    wing: Wing,
+    velocity: float,
+    alpha: float | None,
+    lift: float | None,
+    density: float,
+    options: SolverOptions,
+) -> OperatingPoint:
+    """The airspeed's point: at `alpha`, or trimmed to `lift` (`wing` has its ailerons neutral)."""
+    if alpha is not None:
+        return OperatingPoint(velocity, alpha, density)
+    trimmed = FlightCondition(velocity=velocity, density=density, lift=lift)
+    return solve(wing, trimmed, options=options).flight
 
 
 def _linear_divergence(wing: Wing, density: float, options: SolverOptions) -> LinearDivergence:

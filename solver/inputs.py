@@ -546,13 +546,6 @@ class FlightCondition:
             raise InvalidInput("velocity", "is required: the airspeed to solve at")
         return OperatingPoint(self.velocity, alpha, self.density)
 
-    def at_given_alpha(self, what: str) -> OperatingPoint:
-        """The point of a condition that gives its airspeed and alpha, for `what` (an operation
-        that is not trimmed: "the roll response"); InvalidInput naming the missing field."""
-        if self.alpha is None:
-            raise InvalidInput("alpha", f"is required: {what} is answered at a given alpha")
-        return self.at_alpha(self.alpha)
-
     @staticmethod
     def velocity_for(dynamic_pressure: float, density: float) -> float:
         """V = sqrt(2 q / rho) [m/s]."""

@@ -67,6 +67,7 @@ from solver.validity import roll_findings
 
 __all__ = [
     "antisymmetric_system",
+    "operating_point",
     "hinge_moments",
     "is_antisymmetric",
     "roll",
@@ -119,6 +120,16 @@ def antisymmetric_system(
 # ------------------------------------------------------------------------------ the answer
 
 
+def operating_point(wing: Wing, flight: FlightCondition, options: SolverOptions) -> OperatingPoint:
+    """The point a condition gives: its alpha, or for a trimmed one the alpha at which the wing,
+    its ailerons neutral, carries the lift at this airspeed (an aileron's antisymmetric lift
+    sums to zero, so the ailerons do not change the trim to first order). Raises as `solve`
+    does for a trim past divergence."""
+    if flight.alpha is not None:
+        return flight.at_alpha(flight.alpha)
+    return solve(without_aileron_deflections(wing), flight, options=options).flight
+
+
 def roll(
     wing: Wing,
     flight: FlightCondition | OperatingPoint,
@@ -129,6 +140,8 @@ def roll(
 ) -> RollResponse:
     """The wing's antisymmetric response to its ailerons at `flight`.
 
+    flight: at a given alpha, or trimmed (`operating_point`: the trimmed symmetric equilibrium,
+        the response linearised about it).
     roll_rate: [rad/s] a steady roll rate p about x (positive raising the right wing), or None
         for the free-roll rate at which the rolling moment vanishes.
     method: "auto" (exact where the response is exactly antisymmetric, else linearised),
@@ -140,7 +153,7 @@ def roll(
     started = time.perf_counter()
     options = options or SolverOptions()
     if not isinstance(flight, OperatingPoint):
-        flight = flight.at_given_alpha("the roll response")
+        flight = operating_point(wing, flight, options)
     if roll_rate is not None and not (
         isinstance(roll_rate, int | float) and math.isfinite(roll_rate)
     ):

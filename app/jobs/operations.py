@@ -27,8 +27,10 @@ from pydantic.json_schema import SkipJsonSchema
 from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem, problem_body
 from app.schemas import (
+    ControlsRequest,
     FlutterRequest,
     OptimizeRequest,
+    RollRequest,
     SolveRequest,
     SweepRequest,
 )
@@ -137,8 +139,9 @@ def _check(request: Any, settings: Settings) -> None:
     task_of(request, settings)  # raises the endpoint's invalid-input problem
 
 
-def _sweep_points(request: SweepRequest | FlutterRequest) -> int:
-    """The airspeeds of a sweep or a flutter analysis: its progress counts them."""
+def _sweep_points(request: SweepRequest | FlutterRequest | ControlsRequest) -> int:
+    """The airspeeds of a sweep, a flutter analysis or a control sweep: its progress counts
+    them."""
     velocities = request.velocities
     return len(velocities) if isinstance(velocities, list) else velocities.count
 
@@ -301,6 +304,30 @@ register(
         units=_sweep_points,
         check=_check,
         run=_answering("flutter"),
+        result=_text,
+    )
+)
+register(
+    Operation(
+        name="roll",
+        summary="a roll response (POST /roll)",
+        request_model=RollRequest,
+        request_description="A POST /roll body.",
+        units=lambda request: 1,
+        check=_check,
+        run=_answering("roll"),
+        result=_text,
+    )
+)
+register(
+    Operation(
+        name="controls",
+        summary="control effectiveness against airspeed (POST /controls)",
+        request_model=ControlsRequest,
+        request_description="A POST /controls body.",
+        units=_sweep_points,
+        check=_check,
+        run=_answering("controls"),
         result=_text,
     )
 )

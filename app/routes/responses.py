@@ -6,7 +6,14 @@ from typing import Any
 
 from app.problems import ProblemDetails
 
-__all__ = ["FLUTTER_ERRORS", "OPTIMIZE_ERRORS", "SOLVE_ERRORS", "SWEEP_ERRORS"]
+__all__ = [
+    "CONTROLS_ERRORS",
+    "FLUTTER_ERRORS",
+    "OPTIMIZE_ERRORS",
+    "ROLL_ERRORS",
+    "SOLVE_ERRORS",
+    "SWEEP_ERRORS",
+]
 
 
 def _problem(description: str) -> dict[str, Any]:
@@ -52,4 +59,23 @@ FLUTTER_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
         "(`status` no_equilibrium), never with a 422."
     ),
     504: _problem("The analysis exceeded its time budget (/problems/solve-timeout)."),
+}
+
+ROLL_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field: a wing without "
+        "control surfaces, `method` antisymmetric where the response is not exactly "
+        "antisymmetric, `free_roll` of a wing without roll damping), no equilibrium (past the "
+        "symmetric or the antisymmetric divergence: /problems/no-equilibrium) or no convergence "
+        "(/problems/not-converged)."
+    ),
+}
+
+CONTROLS_ERRORS: dict[int | str, dict[str, Any]] = SOLVE_ERRORS | {
+    422: _problem(
+        "Invalid input (/problems/invalid-input, `errors` names each bad field: a wing without "
+        "control surfaces). A speed without an equilibrium is answered in its point (`status`, "
+        "`no_equilibrium`), never with a 422."
+    ),
+    504: _problem("The sweep exceeded its time budget (/problems/solve-timeout)."),
 }

@@ -6,20 +6,32 @@ from __future__ import annotations
 
 from app.schemas.derive import RequestModel, request_model, to_solver
 from app.schemas.examples import (
+    CONTROLS_EXAMPLES,
     FLUTTER_EXAMPLES,
     OPTIMIZE_EXAMPLES,
+    ROLL_EXAMPLES,
     SOLVE_EXAMPLES,
     SWEEP_EXAMPLES,
     study_wing,
 )
 from app.schemas.health import ClusterWorker, HealthResponse, ReadyResponse
-from app.schemas.requests import FlutterRequest, OptimizeRequest, SolveRequest, SweepRequest, Wing
+from app.schemas.requests import (
+    ControlsRequest,
+    FlutterRequest,
+    OptimizeRequest,
+    RollRequest,
+    SolveRequest,
+    SweepRequest,
+    Wing,
+)
 from app.schemas.responses import (
     API_ONLY_FIELDS,
     MODEL_NAMES,
     Answer,
+    ControlsResponse,
     FlutterResponse,
     OptimizeResponse,
+    RollResponse,
     SolveResponse,
     SweepResponse,
     api_fields,
@@ -29,12 +41,16 @@ from app.schemas.responses import (
 
 __all__ = [
     "API_ONLY_FIELDS",
+    "CONTROLS_EXAMPLES",
     "FLUTTER_EXAMPLES",
     "MODEL_NAMES",
     "OPTIMIZE_EXAMPLES",
+    "ROLL_EXAMPLES",
     "SOLVE_EXAMPLES",
     "SWEEP_EXAMPLES",
     "Answer",
+    "ControlsRequest",
+    "ControlsResponse",
     "ClusterWorker",
     "FlutterRequest",
     "FlutterResponse",
@@ -43,6 +59,8 @@ __all__ = [
     "OptimizeResponse",
     "ReadyResponse",
     "RequestModel",
+    "RollRequest",
+    "RollResponse",
     "SolveRequest",
     "SolveResponse",
     "SweepRequest",

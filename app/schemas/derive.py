@@ -42,6 +42,8 @@ _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
     (solver.SweepInput, None, ()): "SweepRequest",
     (solver.OptimizeInput, None, ()): "OptimizeRequest",
     (solver.FlutterInput, None, ()): "FlutterRequest",
+    (solver.RollInput, None, ()): "RollRequest",
+    (solver.ControlsInput, None, ()): "ControlsRequest",
     (solver.SparDesign, None, ()): "TubeSpar",
     (solver.Material, None, ()): "SparMaterial",
     (solver.FlightCondition, "alpha", ()): "FlightAtAlpha",

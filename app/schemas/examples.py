@@ -11,14 +11,18 @@ from typing import Any
 from solver import ISA_SEA_LEVEL_DENSITY
 
 __all__ = [
+    "CONTROLS_EXAMPLES",
     "FLUTTER_EXAMPLES",
     "GOLAND_FLUTTER",
     "OPTIMIZE_EXAMPLES",
+    "ROLL_EXAMPLES",
     "SOLVE_EXAMPLES",
     "STUDY_OPTIMIZE",
     "STUDY_SOLVE",
     "STUDY_SWEEP",
     "STUDY_SWEEP_REQUEST",
+    "STUDY_CONTROLS",
+    "STUDY_ROLL",
     "STUDY_WING",
     "SWEEP_EXAMPLES",
     "study_wing",
@@ -183,6 +187,70 @@ FLUTTER_EXAMPLES: dict[str, Any] = {
             },
             "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
             "velocities": {"start": 2.0, "stop": 21.0, "count": 20},
+        },
+    },
+}
+
+
+# The study's wing with a flap over the inner 45 % of the semispan (hinge at half chord) and an
+# aileron over 55-95 % (hinge at 75 %), on 4 chordwise panels (the aftmost hinge 4 panels carry is
+# at 85 % of the chord).
+STUDY_SURFACES: list[dict[str, Any]] = [
+    {"name": "flap", "start": 0.0, "end": 0.45, "hinge": 0.5, "deflection": 5.0, "kind": "flap"},
+    {
+        "name": "aileron",
+        "start": 0.55,
+        "end": 0.95,
+        "hinge": 0.75,
+        "deflection": 5.0,
+        "kind": "aileron",
+    },
+]
+STUDY_ROLL: dict[str, Any] = {
+    "wing": STUDY_WING | {"control_surfaces": STUDY_SURFACES},
+    "flight": {"velocity": 12.0, "alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "options": {"chordwise_panels": 4},
+}
+STUDY_CONTROLS: dict[str, Any] = {
+    "wing": STUDY_ROLL["wing"],
+    "flight": {"alpha": 5.0, "density": ISA_SEA_LEVEL_DENSITY},
+    "velocities": [6.0, 10.0, 14.0, 18.0, 20.0, 21.0],
+    "options": {"chordwise_panels": 4},
+}
+ROLL_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The study's wing, 5 deg of aileron at 12 m/s, alpha 5 deg: the rolling moment",
+        "value": STUDY_ROLL,
+    },
+    "free_roll": {
+        "summary": "The same wing trimmed to its 300 N: the free-roll rate and pb/2V",
+        "value": STUDY_ROLL
+        | {
+            "flight": {"velocity": 12.0, "weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "free_roll": True,
+        },
+    },
+    "exact": {
+        "summary": "At alpha 0, flap neutral: the exactly antisymmetric equilibrium",
+        "value": STUDY_ROLL
+        | {
+            "wing": STUDY_WING | {"control_surfaces": [STUDY_SURFACES[1]]},
+            "flight": {"velocity": 12.0, "alpha": 0.0, "density": ISA_SEA_LEVEL_DENSITY},
+        },
+    },
+}
+CONTROLS_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The study's flap and aileron from 6 to 21 m/s: the aileron reverses near "
+        "20.6 m/s, before the wing diverges",
+        "value": STUDY_CONTROLS,
+    },
+    "at_its_weight": {
+        "summary": "The same wing trimmed to its 300 N at each airspeed",
+        "value": STUDY_CONTROLS
+        | {
+            "flight": {"weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "velocities": [10.0, 12.0, 14.0, 16.0, 18.0, 20.0],
         },
     },
 }

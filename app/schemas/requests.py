@@ -9,13 +9,23 @@ import solver
 from app.schemas.derive import request_model
 from app.schemas.examples import (
     GOLAND_FLUTTER,
+    STUDY_CONTROLS,
     STUDY_OPTIMIZE,
+    STUDY_ROLL,
     STUDY_SOLVE,
     STUDY_SWEEP_REQUEST,
     STUDY_WING,
 )
 
-__all__ = ["FlutterRequest", "OptimizeRequest", "SolveRequest", "SweepRequest", "Wing"]
+__all__ = [
+    "ControlsRequest",
+    "FlutterRequest",
+    "OptimizeRequest",
+    "RollRequest",
+    "SolveRequest",
+    "SweepRequest",
+    "Wing",
+]
 
 
 def _with_example(model: Any, example: dict[str, Any]) -> Any:
@@ -30,3 +40,5 @@ SolveRequest = _with_example(request_model(solver.SolveInput), STUDY_SOLVE)
 SweepRequest = _with_example(request_model(solver.SweepInput), STUDY_SWEEP_REQUEST)
 OptimizeRequest = _with_example(request_model(solver.OptimizeInput), STUDY_OPTIMIZE)
 FlutterRequest = _with_example(request_model(solver.FlutterInput), GOLAND_FLUTTER)
+RollRequest = _with_example(request_model(solver.RollInput), STUDY_ROLL)
+ControlsRequest = _with_example(request_model(solver.ControlsInput), STUDY_CONTROLS)

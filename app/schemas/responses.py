@@ -32,8 +32,10 @@ __all__ = [
     "API_ONLY_FIELDS",
     "Answer",
     "MODEL_NAMES",
+    "ControlsResponse",
     "FlutterResponse",
     "OptimizeResponse",
+    "RollResponse",
     "SolveResponse",
     "SweepResponse",
     "api_fields",
@@ -52,6 +54,8 @@ MODEL_NAMES = {
     "PointFailure": "NoEquilibrium",
     "OptimalDesign": "OptimizeResponse",
     "FlutterResult": "FlutterResponse",
+    "ControlSweep": "ControlsResponse",
+    "ControlSweepPoint": "ControlsPoint",
 }
 
 # Fields the service adds to a solver type: name -> (type, default, description).
@@ -184,3 +188,5 @@ SolveResponse = response_model(solver.Equilibrium)
 SweepResponse = response_model(solver.AirspeedSweep)
 OptimizeResponse = response_model(solver.OptimalDesign)
 FlutterResponse = response_model(solver.FlutterResult)
+RollResponse = response_model(solver.RollResponse)
+ControlsResponse = response_model(solver.ControlSweep)

@@ -103,6 +103,10 @@ OPERATIONS = [
     ("POST", "/optimize"),
     # Flutter: as few cases as a design; a physical wing with a mass model runs an analysis.
     ("POST", "/flutter"),
+    # Controls: as few cases as a design; a physical wing with control surfaces rolls or
+    # sweeps its effectiveness.
+    ("POST", "/roll"),
+    ("POST", "/controls"),
     ("GET", "/healthz"),
     ("GET", "/readyz"),
     # Jobs (issue 13): fewer cases; ids the fuzzer makes up are never a job's (404).
@@ -117,7 +121,7 @@ POSITIVE, NEGATIVE = GenerationMode.POSITIVE, GenerationMode.NEGATIVE
 # Parameterless GET operations have no invalid request to generate.
 RUNS = [(m, p, POSITIVE, s) for m, p in OPERATIONS for s in SEEDS] + [
     ("POST", p, NEGATIVE, s)
-    for p in ("/solve", "/sweep", "/optimize", "/flutter", "/jobs")
+    for p in ("/solve", "/sweep", "/optimize", "/flutter", "/roll", "/controls", "/jobs")
     for s in SEEDS
 ]
 # Per seed and mode.
@@ -138,7 +142,7 @@ def _examples(method: str, path: str) -> int:
     """Per seed and mode; parameterless GET operations have a handful of distinct requests."""
     if path.startswith("/jobs"):
         return fuzz_examples(CASES_PER_JOB_OPERATION.get(f"{method} {path}", 5))
-    if path in ("/optimize", "/flutter"):
+    if path in ("/optimize", "/flutter", "/roll", "/controls"):
         return fuzz_examples(CASES_PER_DESIGN_OPERATION)
     return fuzz_examples(CASES_PER_BODY_OPERATION // 4 if method == "POST" else 5)
 

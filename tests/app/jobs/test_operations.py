@@ -23,10 +23,14 @@ from app.jobs.operations import OPERATIONS, Operation, answer_item, patiently, s
 from app.problems import Problem, validation_errors
 from app.schemas import (
     Answer,
+    ControlsRequest,
+    ControlsResponse,
     FlutterRequest,
     FlutterResponse,
     OptimizeRequest,
     OptimizeResponse,
+    RollRequest,
+    RollResponse,
     SolveRequest,
     SolveResponse,
     SweepRequest,
@@ -112,6 +116,8 @@ REGISTERED = {
     "sweep": (SweepRequest, SweepResponse, False),
     "optimize": (OptimizeRequest, OptimizeResponse, False),
     "flutter": (FlutterRequest, FlutterResponse, False),
+    "roll": (RollRequest, RollResponse, False),
+    "controls": (ControlsRequest, ControlsResponse, False),
     "batch": (BatchRequest, None, True),
 }
 

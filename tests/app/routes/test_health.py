@@ -60,7 +60,9 @@ def test_committed_openapi_is_current() -> None:
 def test_operation_ids_are_clean() -> None:
     schema = json.loads(OPENAPI_PATH.read_text())
     ids = {op["operationId"] for path in schema["paths"].values() for op in path.values()}
-    assert ids == {"solve", "sweep", "optimize", "flutter", "healthz", "readyz"} | {
+    assert ids == {"solve", "sweep", "optimize", "flutter", "roll", "controls"} | {
+        "healthz",
+        "readyz",
         "submit_job",
         "list_jobs",
         "get_job",

@@ -28,16 +28,22 @@ import solver
 from app.execution import worker
 from app.schemas import (
     API_ONLY_FIELDS,
+    CONTROLS_EXAMPLES,
     FLUTTER_EXAMPLES,
     MODEL_NAMES,
     OPTIMIZE_EXAMPLES,
+    ROLL_EXAMPLES,
     SOLVE_EXAMPLES,
     SWEEP_EXAMPLES,
     Answer,
+    ControlsRequest,
+    ControlsResponse,
     FlutterRequest,
     FlutterResponse,
     OptimizeRequest,
     OptimizeResponse,
+    RollRequest,
+    RollResponse,
     SolveRequest,
     SolveResponse,
     SweepRequest,
@@ -149,6 +155,7 @@ def _reachable(cls: type, found: dict[str, type] | None = None) -> dict[str, typ
 
 RESULTS = _reachable(solver.Equilibrium) | _reachable(solver.AirspeedSweep)
 RESULTS |= _reachable(solver.OptimalDesign) | _reachable(solver.FlutterResult)
+RESULTS |= _reachable(solver.RollResponse) | _reachable(solver.ControlSweep)
 
 
 def test_the_answers_hold_every_result_type_the_names_speak_of() -> None:
@@ -216,10 +223,13 @@ OPERATIONS: dict[str, tuple[type[BaseModel], type[BaseModel], dict[str, Any]]] =
     "sweep": (SweepRequest, SweepResponse, SWEEP_EXAMPLES),
     "optimize": (OptimizeRequest, OptimizeResponse, OPTIMIZE_EXAMPLES),
     "flutter": (FlutterRequest, FlutterResponse, FLUTTER_EXAMPLES),
+    "roll": (RollRequest, RollResponse, ROLL_EXAMPLES),
+    "controls": (ControlsRequest, ControlsResponse, CONTROLS_EXAMPLES),
 }
 # Every example that has an answer (the others are documented problems): equilibria with and
 # without trim, a spar, a load factor; sweeps with failures and trim; both optimisations;
-# flutter on strip theory and the lattice, about the jig and about an equilibrium.
+# flutter on strip theory and the lattice, about the jig and about an equilibrium; roll linearised,
+# free and exact; control sweeps at an alpha and trimmed.
 ANSWERED = [
     ("solve", "study"),
     ("solve", "at_its_weight"),
@@ -233,6 +243,11 @@ ANSWERED = [
     ("flutter", "goland"),
     ("flutter", "goland_lattice"),
     ("flutter", "study_loaded"),
+    ("roll", "study"),
+    ("roll", "free_roll"),
+    ("roll", "exact"),
+    ("controls", "study"),
+    ("controls", "at_its_weight"),
 ]
 
 
