@@ -11,6 +11,14 @@ from __future__ import annotations
 
 import os
 
+# The suite runs on CasADi's virtual machine unless a test is about compilation (those set
+# FLEXWING_COMPILE=1 with a cache of their own: tests/solver/test_compiled.py, test_warm.py,
+# tests/app/routes/test_health.py). The virtual machine and the compiled code give the same
+# bits (tests/solver/test_compiled.py), and a machine without the disk cache would otherwise
+# compile every mesh the tests touch in the background, about a minute of a core each at
+# N = 30: more than the tests themselves. Servers the tests start inherit it.
+os.environ.setdefault("FLEXWING_COMPILE", "0")
+
 import pytest
 from hypothesis import HealthCheck, settings
 

@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 
 import solver
+from solver.roll import without_aileron_deflections
 from tests import study
 
 SAME = 1e-12  # relative, see the module docstring
@@ -98,12 +99,125 @@ def test_an_optimize_input_answers_what_optimize_answers() -> None:
     assert ran.equilibrium.totals.lift == pytest.approx(100.0, rel=1e-8)
 
 
+SURFACES = (
+    {"name": "flap", "start": 0.0, "end": 0.45, "hinge": 0.75, "deflection": 4.0},
+    {"name": "aileron", "start": 0.55, "end": 0.95, "hinge": 0.75, "deflection": 3.0,
+     "kind": "aileron"},
+)  # fmt: skip
+K3 = solver.SolverOptions(chordwise_panels=3)  # the aftmost hinge 3 panels carry: 0.75
+
+
+@functools.cache
+def _surfaced_wing() -> solver.Wing:
+    return solver.Wing.create(**study.study_arrays(12), control_surfaces=SURFACES)
+
+
+@pytest.mark.parametrize(
+    ("flight", "free_roll"),
+    [(study.flight(12.0), False), (solver.FlightCondition(12.0, lift=200.0), True)],
+    ids=["at-alpha", "trimmed-free-roll"],
+)
+def test_a_roll_input_answers_what_roll_answers(
+    flight: solver.FlightCondition, free_roll: bool
+) -> None:
+    ran = solver.RollInput(_surfaced_wing(), flight, free_roll=free_roll, options=K3).run()
+    if flight.alpha is None:  # trimmed: about the equilibrium that carries the lift
+        flight = solver.solve(_surfaced_wing(), flight, options=K3).flight
+    plain = solver.roll(_surfaced_wing(), flight, K3, roll_rate=None if free_roll else 0.0)
+    assert _close(ran.rolling_moment, plain.rolling_moment) or abs(plain.rolling_moment) < 1e-9
+    assert _close(ran.roll_rate, plain.roll_rate)
+    assert _close(ran.right.twist, plain.right.twist)
+
+
+def test_a_controls_input_answers_what_control_sweep_answers() -> None:
+    velocities = (8.0, 14.0, 19.0)
+    flight = solver.FlightCondition(None, alpha=2.0, density=study.DENSITY)
+    ran = solver.ControlsInput(_surfaced_wing(), flight, velocities, options=K3).run()
+    plain = solver.control_sweep(_surfaced_wing(), velocities, 2.0, study.DENSITY, K3)
+    for ours, theirs in zip(ran.points, plain.points, strict=True):
+        assert [c.derivative for c in ours.controls] == pytest.approx(
+            [c.derivative for c in theirs.controls], rel=SAME
+        )
+    assert ran.reversals == plain.reversals
+
+
+def test_a_trimmed_control_sweep_is_at_each_airspeeds_trimmed_alpha() -> None:
+    """Trimmed, each airspeed's effectiveness is the one at the alpha that carries the lift."""
+    lift = 200.0
+    flight = solver.FlightCondition(None, lift=lift, density=study.DENSITY)
+    ran = solver.ControlsInput(_surfaced_wing(), flight, (10.0, 16.0), options=K3).run()
+    for point in ran.points:
+        trimmed = solver.solve(
+            without_aileron_deflections(_surfaced_wing()),
+            solver.FlightCondition(point.velocity, lift=lift, density=study.DENSITY),
+            options=K3,
+        )
+        assert trimmed.totals.lift == pytest.approx(lift, rel=1e-8)
+        at_alpha = solver.control_effectiveness(_surfaced_wing(), trimmed.flight, K3)
+        assert [c.derivative for c in point.controls] == pytest.approx(
+            [c.derivative for c in at_alpha], rel=1e-9
+        )
+
+
+@pytest.mark.parametrize(
+    ("build", "field"),
+    [
+        (
+            lambda: solver.RollInput(study.study_wing(12), study.flight(12.0)),
+            "wing.control_surfaces",
+        ),
+        (
+            lambda: solver.RollInput(_surfaced_wing(), study.flight(12.0)),
+            "wing.control_surfaces[0].hinge",
+        ),
+        (
+            lambda: solver.RollInput(
+                _surfaced_wing(), study.flight(12.0), roll_rate=0.1, free_roll=True, options=K3
+            ),
+            "roll_rate",
+        ),
+        (
+            lambda: solver.RollInput(
+                _surfaced_wing(), solver.FlightCondition(None, alpha=5.0), options=K3
+            ),
+            "flight.velocity",
+        ),
+        (
+            lambda: solver.ControlsInput(
+                study.study_wing(12), solver.FlightCondition(None, 5.0), (10.0,)
+            ),
+            "wing.control_surfaces",
+        ),
+        (
+            lambda: solver.SolveInput(_surfaced_wing(), study.flight(12.0)),
+            "wing.control_surfaces[0].hinge",
+        ),
+    ],
+    ids=[
+        "roll-without-surfaces",
+        "hinge-the-default-mesh-cannot-carry",
+        "a-free-roll-with-a-rate",
+        "roll-without-airspeed",
+        "controls-without-surfaces",
+        "a-solve-whose-flap-the-mesh-cannot-carry",
+    ],
+)
+def test_what_cannot_be_asked_of_the_controls_is_refused_naming_the_field(
+    build: Any, field: str
+) -> None:
+    with pytest.raises(solver.InvalidInput) as refused:
+        build()
+    assert refused.value.field == field
+
+
 def test_the_registry_names_each_input_type() -> None:
     assert {
         "solve": solver.SolveInput,
         "sweep": solver.SweepInput,
         "optimize": solver.OptimizeInput,
         "flutter": solver.FlutterInput,
+        "roll": solver.RollInput,
+        "controls": solver.ControlsInput,
     } == solver.OPERATIONS
 
 
