@@ -93,10 +93,12 @@ class Settings(BaseSettings):
         ),
     )
     solve_timeout: float = Field(
-        default=20.0, gt=0, description="[s] time budget of one /solve in a worker."
+        default=20.0, gt=0, description="[s] time budget of one /solve (and one /roll) in a worker."
     )
     sweep_timeout: float = Field(
-        default=120.0, gt=0, description="[s] time budget of one /sweep in a worker."
+        default=120.0,
+        gt=0,
+        description="[s] time budget of one /sweep (and one /controls) in a worker.",
     )
     optimize_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /optimize in a worker."
@@ -108,8 +110,8 @@ class Settings(BaseSettings):
         default=10.0,
         gt=0,
         description=(
-            "[s] how long a synchronous request (/solve, /sweep, /optimize, /flutter) waits for "
-            "its answer; "
+            "[s] how long a synchronous request (/solve, /sweep, /optimize, /flutter, /roll, "
+            "/controls) waits for its answer; "
             "past it the request becomes a job at once (202 Accepted, Location: /jobs/{id}) "
             "that runs on within its time budget. A client may ask for a longer wait, up to that "
             "budget, with Prefer: wait=<seconds> (RFC 7240)."

@@ -263,6 +263,12 @@ class WorkerPool:
         """Tasks the workers run or hold at once: what keeps them all busy."""
         return max(1, self.backend.capacity if self.backend is not None else 1)
 
+    @property
+    def chunk_seconds(self) -> float:
+        """[s] how long a task of several batch items should take on this backend: long
+        enough that the round trip to a worker is a few per cent of it."""
+        return getattr(self.backend, "CHUNK_SECONDS", 0.05)
+
     def running(self) -> int:
         """Tasks running in workers now (started, not yet collected)."""
         return 0 if self.backend is None else self.backend.running()

@@ -128,6 +128,10 @@ class _Context:
     def lanes(self) -> int:
         return self.manager.service.pool.capacity
 
+    @property
+    def chunk_seconds(self) -> float:
+        return self.manager.service.pool.chunk_seconds
+
     def item_answered(self, index: int, ok: bool, line: str) -> None:
         self.manager.item_answered(self.job, index, ok, line)
 

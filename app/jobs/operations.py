@@ -45,11 +45,10 @@ T = TypeVar("T")
 # Problems that mean "not now" for a batch item: it waits and tries again instead of failing.
 _TRANSIENT = frozenset({"overloaded", "not-ready"})
 _MAX_BACKOFF = 1.0  # [s]
-# Batch items per worker task: at most _CHUNK, about _CHUNK_SECONDS of work. One round trip (one
-# Dask task) for 16 solves of a few ms costs a sixteenth of the per-task overhead, and a chunk's
-# lines still reach the store every ~50 ms.
-_CHUNK = 16
-_CHUNK_SECONDS = 0.05
+# Batch items per worker task: at most _CHUNK, about the backend's `chunk_seconds` of work
+# (`app.execution.pool`): one round trip for many solves of a few ms costs their share of the
+# per-task overhead, and a chunk's lines still reach the store within that time.
+_CHUNK = 64
 
 
 class JobContext(Protocol):
@@ -63,6 +62,11 @@ class JobContext(Protocol):
     @property
     def lanes(self) -> int:
         """[-] items to keep in flight: enough to keep every worker busy."""
+        ...
+
+    @property
+    def chunk_seconds(self) -> float:
+        """[s] about how long one worker task of batch items should take."""
         ...
 
     def item_answered(self, index: int, ok: bool, line: str) -> None:
@@ -215,13 +219,14 @@ async def answer_chunk(
 
 class _Chunks:
     """Consecutive batch items for the lanes to take, in chunks sized to take about
-    `_CHUNK_SECONDS` each (at most `_CHUNK` items): many fast solves share one worker round
-    trip, slow ones still stream one by one, and the last chunks shrink so no lane is left
-    with a long tail while the others idle."""
+    `seconds` each (at most `_CHUNK` items): many fast solves share one worker round trip,
+    slow ones still stream one by one, and the last chunks shrink so no lane is left with a
+    long tail while the others idle."""
 
-    def __init__(self, items: int, lanes: int) -> None:
+    def __init__(self, items: int, lanes: int, seconds: float = 0.05) -> None:
         self.items = items
         self.lanes = max(1, lanes)
+        self.seconds = seconds
         self.next = 0
         self.per_item: float | None = None  # [s] an item's share of its chunk, smoothed
 
@@ -229,7 +234,7 @@ class _Chunks:
         remaining = self.items - self.next
         if remaining <= 0:
             return None
-        size = 1 if self.per_item is None else int(_CHUNK_SECONDS / max(self.per_item, 1e-6))
+        size = 1 if self.per_item is None else int(self.seconds / max(self.per_item, 1e-6))
         size = max(1, min(size, _CHUNK, -(-remaining // self.lanes)))
         start, self.next = self.next, self.next + size
         return range(start, start + size)
@@ -244,7 +249,7 @@ async def _run_batch(context: JobContext, request: BatchRequest) -> None:
     `context.lanes` chunks at a time (enough to keep every worker busy); each chunk's lines are
     recorded as it is answered."""
     items = request.items
-    chunks = _Chunks(len(items), context.lanes)
+    chunks = _Chunks(len(items), context.lanes, context.chunk_seconds)
     loop = asyncio.get_running_loop()
 
     async def lane() -> None:

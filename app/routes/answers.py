@@ -15,7 +15,7 @@ from pydantic import BaseModel
 
 from app.jobs.manager import JobManager
 from app.jobs.views import job_view
-from app.security import principal
+from app.security import owner
 from app.service import OPERATIONS, Service
 
 __all__ = ["answer", "preferred_wait"]
@@ -64,7 +64,7 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
         return Response(answered, media_type="application/json")
     manager: JobManager = request.app.state.jobs
     total = len(task.airspeeds) if hasattr(task, "airspeeds") else 1
-    job = manager.adopt(operation, running, total, principal=principal(request))
+    job = manager.adopt(operation, running, total, principal=owner(request))
     reports.to = lambda done, total: manager.progressed(job, done)
     view = job_view(job.row(), manager.operations)
     return JSONResponse(view, status_code=202, headers={"Location": view["links"]["self"]})

@@ -12,12 +12,14 @@ from app.settings import Settings
 __all__ = ["ServiceDep", "SettingsDep"]
 
 
-def _service(request: Request) -> Service:
+# Coroutines, not functions: FastAPI runs a plain function dependency in a worker thread, a
+# thread hop on every request for reading an attribute (benchmarks/load_benchmark.py, profiled).
+async def _service(request: Request) -> Service:
     service: Service = request.app.state.service
     return service
 
 
-def _settings(request: Request) -> Settings:
+async def _settings(request: Request) -> Settings:
     settings: Settings = request.app.state.settings
     return settings
 

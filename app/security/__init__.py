@@ -16,6 +16,7 @@ from app.security.access import (
     Client,
     install_access,
     is_public,
+    owner,
     principal,
 )
 from app.security.document import SECURITY_SCHEME, document
@@ -37,5 +38,6 @@ __all__ = [
     "install_access",
     "install_headers",
     "is_public",
+    "owner",
     "principal",
 ]

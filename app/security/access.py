@@ -48,6 +48,7 @@ __all__ = [
     "Client",
     "install_access",
     "is_public",
+    "owner",
     "principal",
 ]
 
@@ -101,11 +102,17 @@ class Client:
         return cls("", ANONYMOUS, address_bucket(client[0] if client else None))
 
 
-def principal(request: Request) -> str:
-    """A dependency: the owner of the jobs this request creates or sees (its API key's digest
-    in hex; "" without keys, where every client is the same owner)."""
+def owner(request: Request) -> str:
+    """The owner of the jobs this request creates or sees (its API key's digest in hex; ""
+    without keys, where every client is the same owner)."""
     client = request.scope.get("state", {}).get(_STATE)
     return client.principal if isinstance(client, Client) else ""
+
+
+async def principal(request: Request) -> str:
+    """A dependency: `owner` (a coroutine: FastAPI runs a plain function dependency in a
+    worker thread)."""
+    return owner(request)
 
 
 class AccessMetrics:

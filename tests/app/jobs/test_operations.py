@@ -68,6 +68,7 @@ class Context:
 
     def __init__(self, respond: Callable[[str, Any], Any], lanes: int = 2) -> None:
         self.lanes = lanes
+        self.chunk_seconds = 0.05
         self.service = SimpleNamespace(
             answer=self._answer, task=lambda request: request, run_each=self._run_each
         )
@@ -334,20 +335,22 @@ def test_a_chunk_lost_as_a_whole_is_asked_again_item_by_item() -> None:
 
 
 @pytest.mark.parametrize(
-    ("items", "lanes", "per_item", "sizes"),
+    ("items", "lanes", "seconds", "per_item", "sizes"),
     [
-        (1000, 4, None, 1),  # nothing known yet: one item
-        (1000, 4, 0.003, 16),  # 3 ms solves: the largest chunk
-        (1000, 4, 0.01, 5),  # 10 ms: about 50 ms of work
-        (1000, 4, 0.5, 1),  # slow items stream one by one
-        (10, 4, 0.001, 3),  # a small batch leaves no lane idle
+        (1000, 4, 0.05, None, 1),  # nothing known yet: one item
+        (1000, 4, 0.05, 0.003, 16),  # 3 ms solves: 50 ms of them
+        (1000, 4, 0.05, 0.01, 5),  # 10 ms: about 50 ms of work
+        (1000, 4, 0.05, 0.5, 1),  # slow items stream one by one
+        (10, 4, 0.05, 0.001, 3),  # a small batch leaves no lane idle
+        (1000, 4, 0.25, 0.01, 25),  # Dask's ~10 ms round trip: chunks of 250 ms
+        (1000, 4, 0.25, 0.001, 64),  # at most 64 items
     ],
-    ids=["first", "fast", "ten-ms", "slow", "small-batch"],
+    ids=["first", "fast", "ten-ms", "slow", "small-batch", "dask", "dask-largest"],
 )
-def test_chunks_take_about_fifty_milliseconds(
-    items: int, lanes: int, per_item: float | None, sizes: int
+def test_chunks_take_about_the_backends_chunk_time(
+    items: int, lanes: int, seconds: float, per_item: float | None, sizes: int
 ) -> None:
-    chunks = operations._Chunks(items, lanes)
+    chunks = operations._Chunks(items, lanes, seconds)
     chunks.per_item = per_item
     taken = chunks.take()
     assert taken is not None and len(taken) == sizes
