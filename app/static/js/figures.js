@@ -2,7 +2,7 @@
 // as window.Chart). Every figure records what it drew in `registry` (series as x/y arrays, marked
 // values), which the page exposes as window.__flexwing.figures for tests and for the curious.
 
-import { sections, wireframe } from "./geometry.js";
+import { sections, surfaceOutlines, wireframe } from "./geometry.js";
 
 const { Chart } = window;
 if (!Chart) throw new Error("Chart.js did not load (static/vendor/chart.js-*/chart.umd.min.js)");
@@ -17,6 +17,7 @@ export const COLORS = {
   fit: "#5f6368",
   zero: "#b0b0b0",
   beyond: "#e65100",
+  surface: "#ef6c00",
   vonMises: "#c62828",
   bending: "#1565c0",
   allowable: "#2e7d32",
@@ -495,17 +496,24 @@ export function drawShape(wing, equilibrium, label, scale = 1) {
     const deformedPoints = wireframe(deformed, view);
     series[`${view}_jig`] = { label: "jig", x: jigPoints.map((p) => p.x), y: jigPoints.map((p) => p.y) };
     series[`${view}_deformed`] = { label: deformedLabel, x: deformedPoints.map((p) => p.x), y: deformedPoints.map((p) => p.y) };
+    const datasets = [
+      line("jig (undeformed)", jigPoints, COLORS.rigid, { borderWidth: 1 }),
+      line(deformedLabel, deformedPoints, COLORS.flexible, { borderWidth: 1.2 }),
+    ];
+    // The control surfaces, deflected, on the deformed wing (drawn at their true deflection).
+    const surfacePoints = surfaceOutlines(deformed, wing.control_surfaces, view);
+    if (surfacePoints.length) {
+      series[`${view}_surfaces`] = { label: "control surfaces", x: surfacePoints.map((p) => p.x), y: surfacePoints.map((p) => p.y) };
+      datasets.push(line("control surfaces, deflected", surfacePoints, COLORS.surface, { borderWidth: 1.5 }));
+    }
     draw(canvasId, {
       title,
-      datasets: [
-        line("jig (undeformed)", jigPoints, COLORS.rigid, { borderWidth: 1 }),
-        line(deformedLabel, deformedPoints, COLORS.flexible, { borderWidth: 1.2 }),
-      ],
+      datasets,
       xTitle,
       yTitle,
       x: { ticks: { includeBounds: false } },
       y: view === "top" ? { reverse: true, ticks: { includeBounds: false } } : { ticks: { includeBounds: false } },
-      plugins: { equalAspect: bounds([jigPoints, deformedPoints]) },
+      plugins: { equalAspect: bounds([jigPoints, deformedPoints, surfacePoints]) },
       legend: view === "top",
     });
   }
@@ -564,6 +572,8 @@ export function drawControls(controls) {
     xTitle: "airspeed V [m/s]",
     yTitle: "effectiveness: elastic / rigid derivative [-]",
     x: { min: 0, max: xmax },
+    // From 0 (reversal) up, with headroom above 1 for the speeds' labels (one row each).
+    y: { suggestedMin: 0, suggestedMax: 1 + 0.13 * (vlines.length + 1) },
     pointLegend: true,
     plugins: { annotations: { vlines, hlines: [{ y: 0 }, { y: 1, color: "#e0e0e0" }] } },
   });

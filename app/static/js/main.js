@@ -759,6 +759,7 @@ async function runControls() {
   if (!response) return;
   state.controlRun = { request, response };
   renderControls();
+  $("download-json").disabled = false;
   setIdle(`Control effectiveness of ${response.reversals.length} surface${response.reversals.length === 1 ? "" : "s"} at ${response.points.length} airspeeds.`);
 }
 
@@ -808,6 +809,7 @@ async function runFlutter() {
   if (!response) return;
   state.flutter = { request, response };
   renderFlutter();
+  $("download-json").disabled = false;
   setIdle(`Flutter: ${response.points.length} airspeeds, ${response.modes.length} modes.`);
 }
 
@@ -909,6 +911,8 @@ function downloadResults() {
       rigid: { note: state.solve.rigidNote, panels: state.solve.rigid.panels },
     },
     sweep: state.sweep,
+    controls: state.controlRun,
+    flutter: state.flutter,
   });
 }
 

@@ -878,6 +878,14 @@ def test_an_aileron_sweeps_its_effectiveness_and_reverses_before_divergence(
     verdict = page.inner_text("#controls-first")
     assert "reversal comes first, at 20.62 m/s" in verdict
     assert page.is_visible("#fig-controls canvas#chart-effectiveness")
+    # A solve of the wing carries the surface (and its panels); figure 14.5 outlines it on both
+    # halves, in every view (its hinge line and deflected trailing edge, closed).
+    solved = tab.solved()
+    assert solved["options"] == {"chordwise_panels": 4}
+    shape = tab.figure("14.5")["series"]
+    for view in ("top", "front", "side"):
+        outline = [x for x in shape[f"{view}_surfaces"]["x"] if x is not None]
+        assert len(outline) == 2 * (2 * 14 + 1)  # 12 stations inside 55-95 %, and its ends
 
     # Two panels leave no whole panel aft of a hinge at 75 %: the 422 names the hinge's cell.
     page.fill("#f-chordwise_panels", "2")
