@@ -93,12 +93,27 @@ function fromJobRequest(error) {
  * as a `ProblemError`. Aborting `signal` (the page's Cancel) sends DELETE jobs/{id}, best effort,
  * and rejects with an AbortError, as an aborted fetch does.
  */
-export async function runSweep(request, { signal, onProgress } = {}) {
+export function runSweep(request, options) {
+  return runJob("sweep", request, options);
+}
+
+/** POST /controls as a job (as runSweep): control effectiveness and reversal against airspeed. */
+export function runControls(request, options) {
+  return runJob("controls", request, options);
+}
+
+/** POST /flutter as a job (as runSweep): the V-g and V-f diagrams of the wing's modes. */
+export function runFlutter(request, options) {
+  return runJob("flutter", request, options);
+}
+
+/** Any airspeed-sweeping operation ("sweep", "controls", "flutter") as a job: see runSweep. */
+export async function runJob(operation, request, { signal, onProgress } = {}) {
   const count = request.velocities?.count ?? request.velocities?.length ?? 0;
   onProgress?.({ done: 0, total: count, message: `Submitting ${count} airspeeds` });
   let job;
   try {
-    job = await postJSON("jobs", { operation: "sweep", request }, { signal });
+    job = await postJSON("jobs", { operation, request }, { signal });
   } catch (error) {
     throw error instanceof ProblemError ? fromJobRequest(error) : error;
   }
@@ -114,10 +129,10 @@ export async function runSweep(request, { signal, onProgress } = {}) {
         return job.result;
       }
       if (job.status === "failed") {
-        throw new ProblemError(job.problem?.status ?? 500, job.problem ?? { title: "The sweep failed" });
+        throw fromJobRequest(new ProblemError(job.problem?.status ?? 500, job.problem ?? { title: `The ${operation} failed` }));
       }
       if (job.status === "cancelled") {
-        throw new DOMException("The sweep was cancelled.", "AbortError");
+        throw new DOMException(`The ${operation} was cancelled.`, "AbortError");
       }
       const doing = job.status === "queued" ? "Queued" : "Solving";
       onProgress?.({ done, total, message: `${doing}: ${done} of ${total} airspeeds` });

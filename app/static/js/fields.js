@@ -203,3 +203,71 @@ export function setPath(obj, path, value) {
 export function getPath(obj, path) {
   return path.split(".").reduce((node, part) => (node == null ? undefined : node[part]), obj);
 }
+
+// Control surfaces (wing.control_surfaces, ControlSurface): one row each in the surfaces table.
+// `schema` names the ControlSurface property whose description and limits the column takes from
+// /openapi.json. The default row is the study's aileron (shared/seed).
+export const CONTROL_SURFACE_COLUMNS = [
+  { key: "name", label: "name", unit: "", kind: "text", value: "aileron" },
+  { key: "start", label: "start", unit: "of b/2", value: 0.55 },
+  { key: "end", label: "end", unit: "of b/2", value: 0.95 },
+  { key: "hinge", label: "hinge", unit: "x/c", value: 0.75 },
+  { key: "deflection", label: "deflection", unit: "deg, TE down", value: 5 },
+  {
+    key: "kind",
+    label: "kind",
+    unit: "",
+    kind: "select",
+    value: "aileron",
+    options: [
+      ["aileron", "aileron"],
+      ["flap", "flap"],
+    ],
+  },
+];
+
+// With control surfaces the lattice needs panels aft of each hinge: options.chordwise_panels.
+export const CHORDWISE_FIELD = {
+  key: "chordwise_panels",
+  path: "options.chordwise_panels",
+  label: "Chordwise panels per strip",
+  unit: "-",
+  kind: "integer",
+  value: 4,
+};
+
+/** The chordwise panels a hinge at `hinge` (fraction of chord) needs: a whole cosine-spaced panel
+ * aft of it (the interior nodes of k panels are at (1 - cos(pi i / k)) / 2). */
+export function panelsForHinge(hinge) {
+  for (let k = 2; k <= 8; k++) {
+    const last = (1 - Math.cos((Math.PI * (k - 1)) / k)) / 2;
+    if (hinge <= last + 1e-12) return k;
+  }
+  return 8;
+}
+
+// The wing's mass model (wing.mass, MassModel), needed by POST /flutter (others ignore it). The
+// defaults are the light mass of the study's wing in the flutter examples ("study_loaded").
+export const MASS_FIELDS = [
+  { key: "mass_per_length", path: "wing.mass.mass_per_length", label: "Mass per length", unit: "kg/m", value: 1.0 },
+  { key: "center_of_gravity", path: "wing.mass.center_of_gravity", label: "Centre of gravity", unit: "fraction of chord from the LE", value: 0.42 },
+  { key: "inertia_per_length", path: "wing.mass.inertia_per_length", label: "Inertia per length (about the CG)", unit: "kg m", value: 0.02 },
+];
+
+export const FLUTTER_FIELDS = [
+  { key: "flutter_start", path: "velocities.start", label: "From", unit: "m/s", value: 2 },
+  { key: "flutter_stop", path: "velocities.stop", label: "To", unit: "m/s", value: 21 },
+  { key: "flutter_count", path: "velocities.count", label: "Airspeeds", unit: "-", kind: "integer", value: 20 },
+];
+
+/** An input's limits (min, max) from a JSON-schema property (its `anyOf`/`oneOf` numbers too). */
+export function applyLimits(control, property) {
+  const number = [property, ...(property?.anyOf ?? []), ...(property?.oneOf ?? [])].find(
+    (p) => p && (p.minimum !== undefined || p.maximum !== undefined || p.exclusiveMinimum !== undefined),
+  );
+  if (!number || control.type !== "number") return;
+  const min = number.minimum ?? number.exclusiveMinimum;
+  const max = number.maximum ?? number.exclusiveMaximum;
+  if (min !== undefined) control.min = String(min);
+  if (max !== undefined) control.max = String(max);
+}

@@ -2,7 +2,7 @@
 // as window.Chart). Every figure records what it drew in `registry` (series as x/y arrays, marked
 // values), which the page exposes as window.__flexwing.figures for tests and for the curious.
 
-import { sections, wireframe } from "./geometry.js";
+import { sections, surfaceOutlines, wireframe } from "./geometry.js";
 
 const { Chart } = window;
 if (!Chart) throw new Error("Chart.js did not load (static/vendor/chart.js-*/chart.umd.min.js)");
@@ -17,6 +17,7 @@ export const COLORS = {
   fit: "#5f6368",
   zero: "#b0b0b0",
   beyond: "#e65100",
+  surface: "#ef6c00",
   vonMises: "#c62828",
   bending: "#1565c0",
   allowable: "#2e7d32",
@@ -495,21 +496,179 @@ export function drawShape(wing, equilibrium, label, scale = 1) {
     const deformedPoints = wireframe(deformed, view);
     series[`${view}_jig`] = { label: "jig", x: jigPoints.map((p) => p.x), y: jigPoints.map((p) => p.y) };
     series[`${view}_deformed`] = { label: deformedLabel, x: deformedPoints.map((p) => p.x), y: deformedPoints.map((p) => p.y) };
+    const datasets = [
+      line("jig (undeformed)", jigPoints, COLORS.rigid, { borderWidth: 1 }),
+      line(deformedLabel, deformedPoints, COLORS.flexible, { borderWidth: 1.2 }),
+    ];
+    // The control surfaces, deflected, on the deformed wing (drawn at their true deflection).
+    const surfacePoints = surfaceOutlines(deformed, wing.control_surfaces, view);
+    if (surfacePoints.length) {
+      series[`${view}_surfaces`] = { label: "control surfaces", x: surfacePoints.map((p) => p.x), y: surfacePoints.map((p) => p.y) };
+      datasets.push(line("control surfaces, deflected", surfacePoints, COLORS.surface, { borderWidth: 1.5 }));
+    }
     draw(canvasId, {
       title,
-      datasets: [
-        line("jig (undeformed)", jigPoints, COLORS.rigid, { borderWidth: 1 }),
-        line(deformedLabel, deformedPoints, COLORS.flexible, { borderWidth: 1.2 }),
-      ],
+      datasets,
       xTitle,
       yTitle,
       x: { ticks: { includeBounds: false } },
       y: view === "top" ? { reverse: true, ticks: { includeBounds: false } } : { ticks: { includeBounds: false } },
-      plugins: { equalAspect: bounds([jigPoints, deformedPoints]) },
+      plugins: { equalAspect: bounds([jigPoints, deformedPoints, surfacePoints]) },
       legend: view === "top",
     });
   }
   record("14.5", series, { scale, tip_heave: stations.heave.at(-1), tip_twist: stations.twist.at(-1) }, { label });
+}
+
+// -------------------------------------------------------------------- control effectiveness
+
+/** One colour per control surface or mode, in order. */
+export const PALETTE = ["#1565c0", "#c62828", "#2e7d32", "#6a1b9a", "#ef6c00", "#00838f", "#5d4037", "#ad1457"];
+const colorOf = (i) => PALETTE[i % PALETTE.length];
+
+/** The nicest axis end above the largest of `speeds` (5 m/s steps up to 100, 10 beyond). */
+function speedAxisEnd(speeds) {
+  const top = 1.03 * Math.max(...speeds.filter((v) => v != null && Number.isFinite(v)));
+  const step = top > 100 ? 10 : 5;
+  return step * Math.ceil(top / step);
+}
+
+/** Each control surface's effectiveness (elastic over rigid derivative) against airspeed, its
+ * linear reversal speed and the wing's symmetric and antisymmetric divergence speeds marked. */
+export function drawControls(controls) {
+  const solved = controls.points.filter((p) => p.status === "equilibrium");
+  const names = controls.reversals.map((r) => r.name);
+  const series = {};
+  const datasets = [];
+  const vlines = [];
+  const marks = { reversal: {}, crossing: {}, first: {} };
+  controls.reversals.forEach((summary, i) => {
+    const color = colorOf(i);
+    const at = solved.map((p) => p.controls.find((c) => c.name === summary.name));
+    const V = solved.map((p) => p.velocity);
+    const E = at.map((c) => c?.effectiveness ?? null);
+    const label = summary.name === summary.kind ? summary.name : `${summary.name} (${summary.kind})`;
+    series[`effectiveness_${summary.name}`] = { label, x: V, y: E };
+    datasets.push(line(label, points(V, E), color, { pointRadius: 3, pointStyle: "circle" }));
+    marks.reversal[summary.name] = summary.reversal.velocity;
+    marks.crossing[summary.name] = summary.crossing?.velocity ?? null;
+    marks.first[summary.name] = summary.first;
+    if (summary.reversal.velocity != null) {
+      vlines.push({ x: summary.reversal.velocity, label: `${summary.name} reversal ${fmt(summary.reversal.velocity, 2)} m/s`, color, dash: [6, 4] });
+    }
+  });
+  const symmetric = controls.symmetric_divergence.velocity;
+  const antisymmetric = controls.antisymmetric_divergence.velocity;
+  if (symmetric != null) vlines.push({ x: symmetric, label: `divergence ${fmt(symmetric, 2)} m/s`, color: COLORS.fold });
+  if (antisymmetric != null && names.length && controls.reversals.some((r) => r.kind === "aileron")) {
+    vlines.push({ x: antisymmetric, label: `antisymmetric divergence ${fmt(antisymmetric, 2)} m/s`, color: COLORS.fold, dash: [2, 3] });
+  }
+  marks.symmetric_divergence = symmetric;
+  marks.antisymmetric_divergence = antisymmetric;
+  const xmax = speedAxisEnd([...controls.points.map((p) => p.velocity), ...vlines.map((l) => l.x)]);
+  draw("chart-effectiveness", {
+    title: "Control effectiveness falls to zero at reversal",
+    datasets,
+    xTitle: "airspeed V [m/s]",
+    yTitle: "effectiveness: elastic / rigid derivative [-]",
+    x: { min: 0, max: xmax },
+    // From 0 (reversal) up, with headroom above 1 for the speeds' labels (one row each).
+    y: { suggestedMin: 0, suggestedMax: 1 + 0.13 * (vlines.length + 1) },
+    pointLegend: true,
+    plugins: { annotations: { vlines, hlines: [{ y: 0 }, { y: 1, color: "#e0e0e0" }] } },
+  });
+  record("controls", series, marks, { surfaces: names });
+}
+
+// --------------------------------------------------------------------------------- flutter
+
+/** V-g and V-f: every mode's damping ratio and frequency against airspeed, the flutter and
+ * divergence speeds marked; and the first modes' shapes (heave, twist) along the span. */
+export function drawFlutter(flutter, { shapes = 3 } = {}) {
+  const solved = flutter.points.filter((p) => p.status === "solved" && p.damping);
+  const V = solved.map((p) => p.velocity);
+  const series = {};
+  const vg = [];
+  const vf = [];
+  const modeCount = Math.max(flutter.modes.length, ...solved.map((p) => p.damping.length));
+  for (let m = 0; m < modeCount; m++) {
+    const label = `mode ${m + 1}`;
+    const g = solved.map((p) => p.damping[m] ?? null);
+    const w = solved.map((p) => p.frequency[m] ?? null);
+    series[`damping_${m}`] = { label, x: V, y: g };
+    series[`frequency_${m}`] = { label, x: V, y: w };
+    vg.push(line(label, points(V, g), colorOf(m), { pointRadius: 2 }));
+    vf.push(line(label, points(V, w), colorOf(m), { pointRadius: 2 }));
+  }
+  const vlines = [];
+  const onset = flutter.flutter;
+  if (onset) {
+    vlines.push({ x: onset.velocity, label: `flutter ${fmt(onset.velocity, 2)} m/s (mode ${onset.mode + 1})`, color: COLORS.moment });
+    const mark = { label: "flutter point", data: [{ x: onset.velocity, y: onset.frequency }], borderColor: COLORS.moment, backgroundColor: COLORS.moment, pointStyle: "crossRot", pointRadius: 8, borderWidth: 2 };
+    vf.push(mark);
+    vg.push({ ...mark, data: [{ x: onset.velocity, y: 0 }] });
+  }
+  const divergence = flutter.divergence;
+  if (divergence) {
+    vlines.push({ x: divergence.velocity, label: `divergence ${fmt(divergence.velocity, 2)} m/s${divergence.within_range ? "" : " (beyond the range)"}`, color: COLORS.fold, dash: [6, 4] });
+  }
+  const xmax = speedAxisEnd([...flutter.points.map((p) => p.velocity), ...vlines.map((l) => l.x)]);
+  const speed = { min: 0, max: xmax };
+  draw("chart-vg", {
+    title: "V-g: a mode flutters where its damping crosses zero",
+    datasets: vg,
+    xTitle: "airspeed V [m/s]",
+    yTitle: "damping ratio [-] (negative: grows)",
+    x: speed,
+    pointLegend: true,
+    plugins: { annotations: { vlines, hlines: [{ y: 0, color: "#555" }] } },
+  });
+  draw("chart-vf", {
+    title: "V-f: the modes' frequencies coalesce toward flutter",
+    datasets: vf,
+    xTitle: "airspeed V [m/s]",
+    yTitle: "frequency ω [rad/s]",
+    x: speed,
+    y: { min: 0 },
+    pointLegend: true,
+    plugins: { annotations: { vlines, vlineLabels: false } },
+  });
+  const shown = flutter.modes.slice(0, shapes);
+  const heave = shown.map((mode, m) => line(`mode ${m + 1}, ${fmt(mode.frequency, 1)} rad/s`, points(flutter.y, mode.heave), colorOf(m)));
+  const twist = shown.map((mode, m) => line(`mode ${m + 1}`, points(flutter.y, mode.twist), colorOf(m), { borderDash: [6, 3] }));
+  shown.forEach((mode, m) => {
+    series[`shape_heave_${m}`] = { label: `mode ${m + 1}`, x: flutter.y, y: mode.heave };
+    series[`shape_twist_${m}`] = { label: `mode ${m + 1}`, x: flutter.y, y: mode.twist };
+  });
+  draw("chart-mode-heave", {
+    title: "Mode shapes in vacuum: heave (largest edge motion 1 m)",
+    datasets: heave,
+    xTitle: "spanwise position y [m]",
+    yTitle: "heave [m]",
+    x: { min: 0 },
+    plugins: { annotations: { hlines: [{ y: 0 }] } },
+  });
+  draw("chart-mode-twist", {
+    title: "Mode shapes in vacuum: twist, same scale",
+    datasets: twist,
+    xTitle: "spanwise position y [m]",
+    yTitle: "twist [deg]",
+    x: { min: 0 },
+    legend: false,
+    plugins: { annotations: { hlines: [{ y: 0 }] } },
+  });
+  record(
+    "flutter",
+    series,
+    {
+      status: flutter.status,
+      flutter_velocity: onset?.velocity ?? null,
+      flutter_frequency: onset?.frequency ?? null,
+      flutter_mode: onset?.mode ?? null,
+      divergence_velocity: divergence?.velocity ?? null,
+    },
+    { modes: modeCount, mode_frequencies: flutter.modes.map((m) => m.frequency) },
+  );
 }
 
 // ----------------------------------------------------------------------------------- exporting

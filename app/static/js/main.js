@@ -4,18 +4,24 @@
 import * as api from "./api.js";
 import { downloadBlob, downloadJSON, downloadText, toCSV } from "./download.js";
 import {
+  CHORDWISE_FIELD,
   FLIGHT_FIELDS,
+  FLUTTER_FIELDS,
+  MASS_FIELDS,
   OPTIONAL_FIELDS,
   PLANFORM_FIELDS,
   SPAR_FIELDS,
   STIFFNESS_LAW_KEYS,
   SWEEP_FIELDS,
+  applyLimits,
   controlValue,
+  panelsForHinge,
   renderField,
   setPath,
 } from "./fields.js";
 import * as figures from "./figures.js";
 import { askForKey, installKeyBox } from "./key.js";
+import { ControlSurfaceTable } from "./surfaces.js";
 import { StationTable, stationsFromPlanform } from "./wing.js";
 
 const $ = (id) => document.getElementById(id);
@@ -30,7 +36,10 @@ const state = {
   options: {}, // solver options loaded from JSON (sent as given; the page sets only safety_factor)
   solve: null, // {request, response, rigid, rigidNote}
   sweep: null, // {request, response}
-  runs: { solve: 0, sweep: 0, failed: 0 },
+  controlRun: null, // {request, response} of POST /controls
+  flutter: null, // {request, response} of POST /flutter
+  mass: false, // whether the wing carries its mass model (wing.mass, for flutter)
+  runs: { solve: 0, sweep: 0, controls: 0, flutter: 0, failed: 0 },
   busy: false,
   abort: null,
 };
@@ -53,6 +62,39 @@ const table = new StationTable($("stations-table"), {
     updateCount();
   },
 });
+
+const surfaces = new ControlSurfaceTable($("surfaces-table"), { onChange: () => updateSurfaces() });
+
+/** The surfaces' count, whether the controls sweep is offered, and the chordwise panels they need. */
+function updateSurfaces({ raise = false } = {}) {
+  const n = surfaces.rows;
+  $("surface-count").textContent = n ? String(n) : "none";
+  $("controls-actions").hidden = n === 0;
+  $("chordwise").hidden = n === 0;
+  const hinges = surfaces.read().map((s) => s.hinge).filter((h) => h != null && h > 0 && h < 1);
+  const need = hinges.length ? Math.max(...hinges.map(panelsForHinge)) : 1;
+  const control = state.controls.chordwise_panels?.control;
+  if (!control) return;
+  let raised = false;
+  if (raise && (value("chordwise_panels") ?? 0) < need) {
+    control.value = String(Math.max(need, 3));
+    raised = true;
+  }
+  $("chordwise-note").textContent = n
+    ? `Control surfaces need chordwise panels: a hinge at ${Math.max(...hinges, 0)} of the chord needs at least ${need} (a whole panel aft of it)` +
+      (raised ? `; set to ${control.value}.` : ".") +
+      " Every run of this wing (solve, sweep, controls, flutter) uses them."
+    : "";
+}
+
+function setMass(on) {
+  state.mass = on;
+  $("mass-on").checked = on;
+  $("mass").hidden = !on;
+  $("flutter-hint").textContent = on
+    ? "Enter in a flutter field runs it."
+    : 'Needs the wing\'s mass: tick "the wing has a mass model" under Wing.';
+}
 
 function render(fields, parent, options = {}) {
   for (const field of fields) {
@@ -106,6 +148,12 @@ function wing() {
     delete result.bending_stiffness;
     delete result.torsional_stiffness;
   }
+  if (surfaces.rows) result.control_surfaces = surfaces.read();
+  if (state.mass) {
+    const mass = {};
+    for (const field of MASS_FIELDS) setPath(mass, field.path, value(field.key));
+    result.mass = mass.wing.mass;
+  }
   for (const { field, control } of state.extra) {
     if (field.path?.startsWith("wing.") && field.kind !== "column") {
       const v = controlValue(control, field.kind);
@@ -136,6 +184,7 @@ function flight({ withVelocity }) {
 function withOptions(request) {
   if (Object.keys(state.options).length) request.options = { ...state.options };
   if (state.stiffness === "spar") setPath(request, "options.safety_factor", value("safety_factor"));
+  if (request.wing.control_surfaces?.length) setPath(request, CHORDWISE_FIELD.path, value(CHORDWISE_FIELD.key));
   return request;
 }
 
@@ -143,11 +192,17 @@ function solveRequest() {
   return withOptions({ wing: wing(), flight: flight({ withVelocity: true }) });
 }
 
-function sweepRequest() {
+function sweepRequest(fields = SWEEP_FIELDS) {
   const request = withOptions({ wing: wing(), flight: flight({ withVelocity: false }) });
-  for (const field of SWEEP_FIELDS) setPath(request, field.path, value(field.key));
+  for (const field of fields) setPath(request, field.path, value(field.key));
   return request;
 }
+
+/** POST /controls: the sweep's airspeeds, the wing's control surfaces. */
+const controlsRequest = () => sweepRequest(SWEEP_FIELDS);
+
+/** POST /flutter: the flutter panel's airspeeds, the wing with its mass. */
+const flutterRequest = () => sweepRequest(FLUTTER_FIELDS);
 
 /** The flight panel's choice: fly at an angle of attack, or trimmed to carry a weight. */
 function setFlightMode(mode) {
@@ -157,6 +212,7 @@ function setFlightMode(mode) {
     wrap.hidden = wrap.dataset.flightMode !== mode;
   }
   $("sweep-same").textContent = mode === "weight" ? "weight, load factor" : "angle of attack";
+  $("flutter-same").textContent = $("sweep-same").textContent;
 }
 
 /** Where EI and GJ come from: the laws (or the table's columns), or a tube spar. */
@@ -178,6 +234,20 @@ async function addOptionalFields() {
   // Trim and the tube spar came with later API versions: offered when this one has them.
   $("flight-mode").hidden = !schemas.FlightAtWeight;
   $("stiffness-from").hidden = !schemas.TubeSpar;
+  // Control surfaces (with the controls sweep) and the mass model (with flutter), likewise.
+  const surfaceSchema = schemas.Wing?.properties?.control_surfaces && schemas.ControlSurface;
+  $("surfaces-details").hidden = !surfaceSchema;
+  if (surfaceSchema) surfaces.setSchema(surfaceSchema);
+  applyLimits(state.controls.chordwise_panels.control, schemas.SolverOptions?.properties?.chordwise_panels);
+  const massSchema = schemas.Wing?.properties?.mass && schemas.MassModel;
+  const flutter = Boolean(massSchema && schemas.FlutterRequest);
+  for (const id of ["mass-from", "flutter", "flutter-actions"]) $(id).hidden = !flutter;
+  for (const field of MASS_FIELDS) {
+    const property = massSchema?.properties?.[field.path.split(".").at(-1)];
+    const { control } = state.controls[field.key];
+    applyLimits(control, property);
+    if (property?.description) control.title = property.description;
+  }
   const stations = table.read(); // before a column is added: read() reads every column's cells
   let columns = false;
   for (const field of OPTIONAL_FIELDS) {
@@ -278,9 +348,10 @@ function showFieldErrors(errors) {
     const controls = controlsFor(field);
     if (!controls.length) unplaced.push({ field, reason });
     for (const control of controls) {
-      const inTable = control.closest("#stations-table") !== null;
+      const inTable = control.closest("#stations-table, #surfaces-table") !== null;
       attachError(control, inTable ? reason : `${stationWords(field)}${reason}`);
-      if (inTable) $("stations-details").open = true;
+      const details = control.closest("details");
+      if (details) details.open = true;
       first ??= control.tagName === "TH" ? null : control;
     }
   }
@@ -363,6 +434,7 @@ function showProblem(error, velocity) {
 // -------------------------------------------------------------------------------- busy state
 
 let ticker = null;
+const RUN_BUTTONS = ["solve-button", "sweep-button", "controls-button", "flutter-button"];
 
 function setBusy(message, { cancellable = false } = {}) {
   state.busy = true;
@@ -372,7 +444,7 @@ function setBusy(message, { cancellable = false } = {}) {
   $("status-text").textContent = message;
   $("cancel").hidden = !cancellable;
   $("results").setAttribute("aria-busy", "true");
-  for (const id of ["solve-button", "sweep-button"]) $(id).disabled = true;
+  for (const id of RUN_BUTTONS) $(id).disabled = true;
   clearInterval(ticker);
   ticker = setInterval(() => {
     $("status-text").dataset.elapsed = `${((performance.now() - started) / 1000).toFixed(1)} s`;
@@ -395,7 +467,7 @@ function setIdle(message) {
   delete $("status-text").dataset.elapsed;
   $("cancel").hidden = true;
   $("results").removeAttribute("aria-busy");
-  for (const id of ["solve-button", "sweep-button"]) $(id).disabled = false;
+  for (const id of RUN_BUTTONS) $(id).disabled = false;
 }
 
 // ------------------------------------------------------------------------------------- solve
@@ -648,6 +720,138 @@ function renderSweep() {
   $("download-json").disabled = false;
 }
 
+// ------------------------------------------------------------------ controls and flutter runs
+
+/** Run one airspeed job (`kind`: "controls" or "flutter") of `request` through `call`, as the
+ * sweep runs: busy with Cancel and progress, its 422 next to the fields; resolves with the answer
+ * (null when it failed or was cancelled). */
+async function runAirspeedJob(kind, request, call, words) {
+  if (state.busy) return null;
+  clearErrors();
+  const controller = new AbortController();
+  state.abort = controller;
+  setBusy(words, { cancellable: true });
+  try {
+    const response = await call(request, { signal: controller.signal, onProgress: setProgress });
+    state.runs[kind]++;
+    return response;
+  } catch (error) {
+    state.runs.failed++;
+    if (error.name === "AbortError") {
+      setIdle(`${words}: cancelled.`);
+    } else if (error instanceof api.ProblemError) {
+      setIdle(`${words}: failed.`);
+      showProblem(error);
+    } else {
+      setIdle(`${words}: failed.`);
+      throw error;
+    }
+    return null;
+  } finally {
+    state.abort = null;
+  }
+}
+
+async function runControls() {
+  if (!surfaces.rows) return;
+  const request = controlsRequest();
+  const response = await runAirspeedJob("controls", request, api.runControls, "Control effectiveness");
+  if (!response) return;
+  state.controlRun = { request, response };
+  renderControls();
+  $("download-json").disabled = false;
+  setIdle(`Control effectiveness of ${response.reversals.length} surface${response.reversals.length === 1 ? "" : "s"} at ${response.points.length} airspeeds.`);
+}
+
+/** Which comes first for one surface, in words. */
+function firstWords(summary, symmetric, antisymmetric) {
+  const reversal = summary.reversal.velocity;
+  const problem = summary.kind === "aileron" ? "antisymmetric" : "symmetric";
+  const divergence = summary.kind === "aileron" ? antisymmetric : symmetric;
+  const divergenceText = divergence != null ? `${problem} divergence at ${f(divergence, 2)} m/s` : `no ${problem} divergence`;
+  const name = `The ${summary.kind} "${summary.name}"`;
+  if (summary.first === "reversal") {
+    return `${name}: reversal comes first, at ${f(reversal, 2)} m/s, before ${divergenceText}.`;
+  }
+  if (summary.first === "divergence") {
+    return `${name}: divergence comes first (${divergenceText}), before ${reversal != null ? `its reversal at ${f(reversal, 2)} m/s` : "any reversal"}.`;
+  }
+  return `${name}: neither reverses nor diverges (${summary.reversal.reason ?? divergenceText}).`;
+}
+
+function renderControls() {
+  const { request, response } = state.controlRun;
+  $("fig-controls").hidden = false;
+  figures.drawControls(response);
+  const symmetric = response.symmetric_divergence.velocity;
+  const antisymmetric = response.antisymmetric_divergence.velocity;
+  $("controls-first").textContent = response.reversals.map((r) => firstWords(r, symmetric, antisymmetric)).join(" ");
+  const crossings = response.reversals
+    .filter((r) => r.crossing?.velocity != null)
+    .map((r) => `${r.name}'s effectiveness changes sign between the sweep's airspeeds at ${f(r.crossing.velocity, 2)} m/s`);
+  $("controls-note").textContent =
+    `Reversal: the linear reversal of the unloaded jig (dashed, one per surface); divergence: the jig's symmetric ` +
+    `(${f(symmetric, 2)} m/s) and antisymmetric (${f(antisymmetric, 2)} m/s) divergence, the latter the problem an aileron acts in. ` +
+    `${request.options?.chordwise_panels ?? 1} chordwise panels per strip.` +
+    (crossings.length ? ` ${crossings.join("; ")}.` : "");
+  $("fig-controls").scrollIntoView({ block: "nearest" });
+}
+
+async function runFlutter() {
+  if (!state.mass) {
+    clearErrors();
+    showProblem(new api.ProblemError(0, { title: "Flutter needs the wing's mass", detail: 'Tick "the wing has a mass model" under Wing and give its mass per length, centre of gravity and inertia.' }));
+    $("mass-on").focus();
+    return;
+  }
+  const request = flutterRequest();
+  const response = await runAirspeedJob("flutter", request, api.runFlutter, "Flutter");
+  if (!response) return;
+  state.flutter = { request, response };
+  renderFlutter();
+  $("download-json").disabled = false;
+  setIdle(`Flutter: ${response.points.length} airspeeds, ${response.modes.length} modes.`);
+}
+
+function flutterWords(response) {
+  const { flutter: onset, no_flutter: none, divergence } = response;
+  const words = [];
+  if (response.status === "flutter") {
+    words.push(
+      `Flutter at ${f(onset.velocity, 2)} m/s: mode ${onset.mode + 1}'s damping crosses zero there, at ${f(onset.frequency, 1)} rad/s ` +
+        `(${f(onset.frequency / (2 * Math.PI), 2)} Hz, reduced frequency ${f(onset.reduced_frequency, 3)}).`,
+    );
+  } else if (response.status === "no_flutter_in_range") {
+    words.push(
+      `No flutter between ${f(none.searched_from, 2)} and ${f(none.searched_to, 2)} m/s: every mode stays damped; the least damping, ` +
+        `${none.least_damping.toPrecision(3)}, is mode ${none.least_damped_mode + 1}'s at ${f(none.least_damped_velocity, 2)} m/s.`,
+    );
+  } else {
+    words.push("No airspeed has a static equilibrium to linearise about: no flutter analysis was possible (each point says why).");
+  }
+  if (divergence) {
+    words.push(`Divergence (${divergence.kind.replaceAll("_", " ")}) at ${f(divergence.velocity, 2)} m/s${divergence.within_range ? "" : ", beyond the airspeeds analysed"}.`);
+    if (onset) words.push(onset.velocity < divergence.velocity ? "Flutter comes first." : "Divergence comes first.");
+  } else {
+    words.push("No divergence.");
+  }
+  return words.join(" ");
+}
+
+function renderFlutter() {
+  const { response } = state.flutter;
+  $("fig-flutter").hidden = false;
+  figures.drawFlutter(response);
+  $("flutter-status").textContent = flutterWords(response);
+  $("fig-flutter").dataset.status = response.status;
+  const lost = response.points.filter((p) => p.status !== "solved").map((p) => f(p.velocity, 2));
+  $("flutter-note").textContent =
+    `Linearised about ${response.about === "jig" ? "the unloaded jig" : "the static equilibrium at each airspeed"}; ${response.aerodynamics} aerodynamics, ` +
+    `${response.unsteady === "theodorsen" ? "Theodorsen's lag" : "quasi-steady"}.` +
+    (lost.length ? ` No equilibrium (no roots) at ${lost.join(", ")} m/s.` : "");
+  $("fig-flutter").scrollIntoView({ block: "nearest" });
+}
+
 // ------------------------------------------------------------------------------ figure 14.5
 
 function shapeChoices() {
@@ -707,6 +911,8 @@ function downloadResults() {
       rigid: { note: state.solve.rigidNote, panels: state.solve.rigid.panels },
     },
     sweep: state.sweep,
+    controls: state.controlRun,
+    flutter: state.flutter,
   });
 }
 
@@ -790,6 +996,23 @@ function loadJSON(text) {
     return;
   }
   const known = new Set([...table.columns.map((c) => c.key), ...state.extra.map((e) => e.field.path?.replace("wing.", ""))]);
+  // Control surfaces go into their table; a uniform mass model (three numbers) into its fields,
+  // any other (per-station lists, concentrated masses) is kept and sent as given.
+  const surfaceList = Array.isArray(w.control_surfaces) && !$("surfaces-details").hidden ? w.control_surfaces : [];
+  if (Array.isArray(w.control_surfaces) && !$("surfaces-details").hidden) known.add("control_surfaces");
+  surfaces.fill(surfaceList);
+  if (surfaceList.length) {
+    $("surfaces-details").open = true;
+    setControl("chordwise_panels", body.options?.chordwise_panels);
+  }
+  const mass = w.mass;
+  const simpleMass =
+    mass && MASS_FIELDS.every((field) => typeof mass[field.path.split(".").at(-1)] === "number") && !(mass.concentrated?.length);
+  if (simpleMass) {
+    known.add("mass");
+    for (const field of MASS_FIELDS) setControl(field.key, mass[field.path.split(".").at(-1)]);
+  }
+  setMass(Boolean(simpleMass));
   // A tube spar of one diameter and one wall thickness goes into the spar's fields; any other
   // spar (per-station lists, a fraction of the thickness) is kept and sent as given.
   const spar = w.spar;
@@ -822,6 +1045,7 @@ function loadJSON(text) {
   setMode("table");
   table.fill(w);
   updateCount();
+  updateSurfaces();
   const fl = body.flight ?? {};
   setStiffness(simpleSpar ? "spar" : "laws");
   setControl("velocity", fl.velocity);
@@ -836,15 +1060,18 @@ function loadJSON(text) {
   } else if (fl.alpha !== undefined) {
     setFlightMode("alpha");
   }
+  // A body's airspeeds go to the sweep; a wing with its mass (a /flutter body) also to flutter's.
   const v = body.velocities;
-  if (Array.isArray(v) && v.length) {
-    setControl("sweep_start", Math.min(...v));
-    setControl("sweep_stop", Math.max(...v));
-    setControl("sweep_count", v.length);
-  } else if (v) {
-    setControl("sweep_start", v.start);
-    setControl("sweep_stop", v.stop);
-    setControl("sweep_count", v.count);
+  for (const prefix of simpleMass ? ["sweep", "flutter"] : ["sweep"]) {
+    if (Array.isArray(v) && v.length) {
+      setControl(`${prefix}_start`, Math.min(...v));
+      setControl(`${prefix}_stop`, Math.max(...v));
+      setControl(`${prefix}_count`, v.length);
+    } else if (v) {
+      setControl(`${prefix}_start`, v.start);
+      setControl(`${prefix}_stop`, v.stop);
+      setControl(`${prefix}_count`, v.count);
+    }
   }
   const extra = [...Object.keys(state.passThrough), ...Object.keys(state.options).map((k) => `options.${k}`)];
   $("planform-note").textContent =
@@ -870,6 +1097,20 @@ function wire() {
     runSweep();
   });
   $("cancel").addEventListener("click", () => state.abort?.abort());
+  $("flutter-form").addEventListener("submit", (event) => {
+    event.preventDefault();
+    runFlutter();
+  });
+  $("controls-button").addEventListener("click", runControls);
+  $("add-surface").addEventListener("click", () => {
+    surfaces.addRow();
+    updateSurfaces({ raise: true });
+  });
+  $("remove-surface").addEventListener("click", () => {
+    surfaces.removeRow();
+    updateSurfaces();
+  });
+  $("mass-on").addEventListener("change", () => setMass($("mass-on").checked));
   $("planform").addEventListener("input", () => state.mode === "planform" && regenerate());
   $("planform").addEventListener("change", () => state.mode === "planform" && regenerate());
   for (const radio of document.querySelectorAll('input[name="mode"]')) {
@@ -916,8 +1157,11 @@ async function main() {
   render(FLIGHT_FIELDS, $("flight"));
   render(SWEEP_FIELDS, $("sweep"), { form: "sweep-form" });
   render(SPAR_FIELDS, $("spar"));
+  render([CHORDWISE_FIELD], $("chordwise"));
+  render(MASS_FIELDS, $("mass"));
+  render(FLUTTER_FIELDS, $("flutter"), { form: "flutter-form" });
   for (const key of ["2", "3", "4", "5"]) figures.clear(`14.${key}`);
-  figures.clear("stress");
+  for (const key of ["stress", "controls", "flutter"]) figures.clear(key);
   wire();
   installKeyBox(async () => {
     await runSolve();
@@ -926,7 +1170,9 @@ async function main() {
   setMode("planform");
   setFlightMode("alpha");
   setStiffness("laws");
+  setMass(false);
   await addOptionalFields();
+  updateSurfaces();
   // The study's wing, solved and swept as the page opens.
   await runSolve();
   await runSweep();

@@ -813,3 +813,187 @@ def test_a_sweep_polled_into_a_rate_limit_waits_and_draws_its_answer(
     assert len(tab.figure("14.4")["series"]["amplification"]["x"]) == 8
     assert "Sweep failed" not in page.inner_text("#status-text")
     assert tab.errors_but(429) == []
+
+
+def _ran(tab: Visit, kind: str, button: str, outcome: str | None = None) -> dict[str, Any]:
+    """Click `button` (a controls or flutter run) and wait for a run of `outcome` (default:
+    `kind`); returns the POST /jobs body the page sent."""
+    with tab.page.expect_request(lambda r: r.url.endswith("/jobs") and r.method == "POST") as sent:
+        before = tab.runs()
+        tab.page.click(button)
+        tab.wait_runs(outcome or kind, before)
+    body = dict(sent.value.post_data_json)
+    assert body["operation"] == kind
+    return body
+
+
+def test_an_aileron_sweeps_its_effectiveness_and_reverses_before_divergence(
+    visit: Callable[..., Visit],
+) -> None:
+    """Issue 25: the study's aileron (55-95 % of the semispan, hinge at 75 %) on 4 chordwise
+    panels loses its effectiveness as the airspeed rises and reverses at ~20.6 m/s, before the
+    wing diverges; too few panels for its hinge is reported next to the hinge's cell."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    assert page.is_hidden("#controls-button")  # no surfaces, no controls sweep
+    page.click("#surfaces-details summary")
+    page.click("#add-surface")
+    assert [page.input_value(f"#surface-{key}-0") for key in ("name", "start", "end", "hinge")] == [
+        "aileron",
+        "0.55",
+        "0.95",
+        "0.75",
+    ]
+    assert page.input_value("#surface-kind-0") == "aileron"
+    assert page.input_value("#f-chordwise_panels") == "4"
+    assert "needs at least 3" in page.inner_text("#chordwise-note")
+    page.fill("#f-sweep_start", "6")
+    page.fill("#f-sweep_stop", "20")
+    page.fill("#f-sweep_count", "5")
+    body = _ran(tab, "controls", "#controls-button")
+    request = body["request"]
+    assert request["wing"]["control_surfaces"] == [
+        {
+            "name": "aileron",
+            "start": 0.55,
+            "end": 0.95,
+            "hinge": 0.75,
+            "deflection": 5,
+            "kind": "aileron",
+        }
+    ]
+    assert request["options"] == {"chordwise_panels": 4}
+    assert request["velocities"] == {"start": 6, "stop": 20, "count": 5}
+
+    figure = tab.figure("controls")
+    assert figure["state"] == "drawn"
+    curve = figure["series"]["effectiveness_aileron"]
+    assert curve["x"] == [6, 9.5, 13, 16.5, 20]
+    assert curve["y"] == sorted(curve["y"], reverse=True) and 0 < curve["y"][0] < 1
+    marks = figure["marks"]
+    assert marks["reversal"]["aileron"] == pytest.approx(20.6, abs=0.1)
+    assert marks["symmetric_divergence"] == pytest.approx(23.9, abs=0.1)
+    assert marks["first"]["aileron"] == "reversal"
+    verdict = page.inner_text("#controls-first")
+    assert "reversal comes first, at 20.62 m/s" in verdict
+    assert page.is_visible("#fig-controls canvas#chart-effectiveness")
+    # A solve of the wing carries the surface (and its panels); figure 14.5 outlines it on both
+    # halves, in every view (its hinge line and deflected trailing edge, closed).
+    solved = tab.solved()
+    assert solved["options"] == {"chordwise_panels": 4}
+    shape = tab.figure("14.5")["series"]
+    for view in ("top", "front", "side"):
+        outline = [x for x in shape[f"{view}_surfaces"]["x"] if x is not None]
+        assert len(outline) == 2 * (2 * 14 + 1)  # 12 stations inside 55-95 %, and its ends
+
+    # Two panels leave no whole panel aft of a hinge at 75 %: the 422 names the hinge's cell.
+    page.fill("#f-chordwise_panels", "2")
+    _ran(tab, "controls", "#controls-button", outcome="failed")
+    error = page.inner_text("#surface-hinge-0-error")
+    assert "chordwise_panels >= 3" in error
+    assert page.get_attribute("#surface-hinge-0", "aria-invalid") == "true"
+    assert page.is_visible("#surface-hinge-0")
+    assert tab.errors_but(422) == []
+
+
+def _goland(stations: int = 12) -> dict[str, Any]:
+    """The Goland wing (app/schemas/examples.py) on a small mesh, its stations as a list."""
+    semispan = 6.096
+    return {
+        "wing": {
+            "y": [round(semispan * i / (stations - 1), 10) for i in range(stations)],
+            "chord": 1.8288,
+            "elastic_axis": 0.33,
+            "bending_stiffness": 9.77e6,
+            "torsional_stiffness": 0.987e6,
+            "mass": {
+                "mass_per_length": 35.71,
+                "center_of_gravity": 0.43,
+                "inertia_per_length": 7.446,
+            },
+        },
+        "flight": {"alpha": 0.0, "density": 1.225},
+        "velocities": {"start": 100.0, "stop": 180.0, "count": 9},
+        "options": {"aerodynamics": "strip"},
+    }
+
+
+def test_a_flutter_run_draws_v_g_and_v_f_with_the_flutter_speed(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """Issue 26: the Goland wing, loaded as a /flutter body, flutters at ~137 m/s with strip
+    theory: the damping of one mode crosses zero there (V-g), its frequency is marked (V-f), and
+    the page says so in words."""
+    body = _goland()
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    tab.load_json(json.dumps(body))
+    assert page.is_checked("#mass-on")
+    assert page.input_value("#f-mass_per_length") == "35.71"
+    assert page.input_value("#f-flutter_count") == "9"
+    sent = _ran(tab, "flutter", "#flutter-button")["request"]
+    assert sent["wing"]["mass"] == body["wing"]["mass"]
+    assert sent["options"] == {"aerodynamics": "strip"}
+    assert sent["velocities"] == body["velocities"]
+    with server.client() as client:
+        expected = client.post("/flutter", json=sent).json()
+    onset = expected["flutter"]
+    assert onset["velocity"] == pytest.approx(137, abs=3)
+
+    figure = tab.figure("flutter")
+    assert figure["state"] == "drawn"
+    marks = figure["marks"]
+    assert marks["status"] == "flutter"
+    assert marks["flutter_velocity"] == pytest.approx(onset["velocity"])
+    assert marks["flutter_frequency"] == pytest.approx(onset["frequency"])
+    assert marks["divergence_velocity"] == pytest.approx(expected["divergence"]["velocity"])
+    modes = figure["modes"]
+    assert modes == len(expected["modes"]) >= 2
+    for m in range(modes):
+        assert figure["series"][f"damping_{m}"]["x"] == [100 + 10 * i for i in range(9)]
+        assert len(figure["series"][f"frequency_{m}"]["y"]) == 9
+    # The fluttering mode's damping changes sign around the flutter speed (V-g).
+    damping = figure["series"][f"damping_{onset['mode']}"]
+    below = [g for v, g in zip(damping["x"], damping["y"], strict=True) if v < onset["velocity"]]
+    above = [g for v, g in zip(damping["x"], damping["y"], strict=True) if v > onset["velocity"]]
+    assert below[-1] > 0 > above[0]
+    assert len(figure["series"]["shape_heave_0"]["x"]) == 12  # the first modes' shapes
+    words = page.inner_text("#flutter-status")
+    assert f"Flutter at {onset['velocity']:.2f} m/s" in words and "Flutter comes first" in words
+    assert page.get_attribute("#fig-flutter", "data-status") == "flutter"
+    assert tab.errors_but(0) == []
+
+
+def test_the_study_wing_with_mass_does_not_flutter_in_range_and_says_so(
+    visit: Callable[..., Visit],
+) -> None:
+    """The study's wing with the light mass of the flutter examples (1 kg/m, CG at 42 %, 0.02 kg
+    m): no flutter from 2 to 21 m/s, the fold beyond; without a mass the page asks for one."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#flutter-button")  # no mass yet: the page says what is missing, sends nothing
+    assert "needs the wing's mass" in page.inner_text("#problem")
+    page.check("#mass-on")
+    assert [page.input_value(f"#f-{k}") for k in ("mass_per_length", "center_of_gravity")] == [
+        "1",
+        "0.42",
+    ]
+    page.fill("#f-flutter_count", "8")
+    sent = _ran(tab, "flutter", "#flutter-button")["request"]
+    assert sent["wing"]["mass"] == {
+        "mass_per_length": 1,
+        "center_of_gravity": 0.42,
+        "inertia_per_length": 0.02,
+    }
+    assert sent["flight"] == {"alpha": 5, "density": 1.225}
+    marks = tab.figure("flutter")["marks"]
+    assert marks["status"] == "no_flutter_in_range" and marks["flutter_velocity"] is None
+    assert marks["divergence_velocity"] == pytest.approx(21.44, abs=0.05)
+    words = page.inner_text("#flutter-status")
+    assert words.startswith("No flutter between 2.00 and 21.00 m/s")
+    assert "beyond the airspeeds analysed" in words
+    assert page.get_attribute("#fig-flutter", "data-status") == "no_flutter_in_range"
+    assert tab.errors == []
