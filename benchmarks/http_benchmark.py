@@ -174,6 +174,7 @@ def http_latency(base: str, count: int) -> tuple[dict[str, list[float]], float]:
         after = pool_seconds(client, "solve")
         pool_mean = (after[0] - before[0]) / (after[1] - before[1])
         out["cached"] = time_posts(client, "/solve", [solve_body(wing, 10.0)] * count)
+        out["solve_raw"] = asyncio.run(raw_posts(base, "/solve", wing, count))
         sweeps = max(count // 10, 20)
         # The density varies by 1e-12 so the result cache misses; each worker has traced the
         # branch of this wing (the first two sweeps), which the solver caches per wing and alpha.
@@ -216,6 +217,21 @@ class RawClient:
     async def close(self) -> None:
         if self.streams is not None:
             self.streams[1].close()
+
+
+async def raw_posts(base: str, path: str, wing: dict[str, Any], count: int) -> list[float]:
+    """Sequential distinct /solve requests from the raw client: the latency without httpx's
+    own cost."""
+    raw, velocities, times = RawClient(base), distinct_velocities(4), []
+    for _ in range(count):
+        body = solve_body(wing, next(velocities))
+        started = time.perf_counter()
+        status, content = await raw.post(path, body)
+        times.append(time.perf_counter() - started)
+        if status != 200:
+            raise RuntimeError(f"{status}: {content[:200]!r}")
+    await raw.close()
+    return times
 
 
 async def throughput(
@@ -286,6 +302,21 @@ def bare_solver(count: int) -> dict[str, list[float]]:
         solver.solve(wing, solver.FlightCondition(v, 5.0), hint=answers[nearest])
         out["solve_warm"].append(time.perf_counter() - started)
         answers[v] = eq
+    # What a worker does for one /solve: the operation input the service built from the
+    # request, solved and its answer serialised (app.execution.worker.run).
+    from app.execution import worker
+    from app.schemas import SolveRequest
+    from app.service import task_of
+    from app.settings import Settings
+
+    settings, own = Settings(), distinct_velocities(5)
+    out["worker_run"] = []
+    for _ in range(count):
+        request = SolveRequest.model_validate_json(solve_body(raw, next(own)))
+        task = task_of(request, settings)
+        started = time.perf_counter()
+        worker.run(task)
+        out["worker_run"].append(time.perf_counter() - started)
     solver.airspeed_sweep(wing, SWEEP, solver.FlightCondition(None, 5.0, 1.225))
     for _ in range(max(count // 10, 20)):
         started = time.perf_counter()
@@ -332,12 +363,14 @@ def main() -> None:
 
     print("HTTP, one client, sequential:")
     row("/solve, distinct airspeeds (from the jig)", http["solve"])
+    row("/solve, distinct airspeeds, raw client", http["solve_raw"])
     row("/solve, repeated request (result cache)", http["cached"])
     row("/sweep 6 speeds, wing seen (branch cached)", http["sweep_seen"])
     row("/sweep 6 speeds, new wing (fold continuation)", http["sweep_new"])
     print("bare solver, same process, same requests:")
     row("solve, cold (from the jig, as the workers)", bare["solve_cold"])
     row("solve, hint: the nearest earlier answer", bare["solve_warm"])
+    row("a worker's own /solve (worker.run: solve + answer)", bare["worker_run"])
     row("sweep 6 speeds, wing seen", bare["sweep_seen"])
     row("sweep 6 speeds, new wing", bare["sweep_new"])
     print("where a sequential /solve spends its time (medians, means):")
@@ -347,6 +380,10 @@ def main() -> None:
     print(f"  whole request {ms(http_p50)}: job in the worker pool {ms(pool_mean)} (mean),")
     print(f"  of which the solver {ms(bare_p50)}; HTTP + validation + JSON {ms(web)},")
     print(f"  dispatch to the process and back {ms(pool_mean - bare_p50)}")
+    own = statistics.median(bare["worker_run"])
+    print("/solve p50 over the worker's own solve p50 (issue 27: within 1 ms):")
+    for name, label in (("solve", "httpx client"), ("solve_raw", "raw client")):
+        print(f"  {label:<12} {ms(statistics.median(http[name]) - own):>10}")
     print("web-layer overhead (HTTP p50 minus bare p50, and their ratio):")
     for name, bare_name in (
         ("solve", "solve_cold"),

@@ -1,21 +1,25 @@
 """Worker processes this service starts and owns (FLEXWING_EXECUTOR=process), on public APIs only.
 
-Each worker is a `multiprocessing` process with two channels: an inbox (a `multiprocessing.Queue`,
-whose feeder thread keeps the event loop from ever blocking on a full pipe) and an outbox (a
-one-way `Pipe`). A reader thread per worker waits on the outbox and on the process's sentinel
-(`multiprocessing.connection.wait`) and hands every message to the event loop. A worker says
+Each worker is a `multiprocessing` process with a one-way pipe each way, both driven by the
+service's event loop itself (asyncio pipe transports: no thread between the loop and a worker,
+and a write never blocks the loop, it is buffered until the pipe takes it). Messages are framed
+as `multiprocessing.connection.Connection` frames them (a 4-byte big-endian length, then the
+bytes), so the worker reads and writes its ends as plain Connections. The service sends a task
+as the pickled (seq, fn, task, reports) and an empty message to stop; a worker says
 
     ("warm", WarmReport)         once, after compiling or loading the warm mesh sizes;
     ("started", seq)             when it begins task `seq` (its time budget starts here);
     ("progress", seq, done, total)  as a task that reports its progress goes;
     ("done", seq, ok, value)     with the task's result, or the exception it raised.
 
-When its outbox ends (EOF) and the process has exited, the worker is gone: its tasks fail with
-`WorkerDied` (the one it was running, if it died on its own) or `Collateral` (queued ones, and
-those of workers this pool ended itself), and the pool is replaced as a whole: a new generation
-of workers is started and warmed, the survivors of the old one are ended with SIGTERM. A task past
-its budget gets `BudgetExceeded` and its worker is killed (SIGKILL), which replaces the generation
-the same way (its other tasks are collateral, resubmitted for free by `app.execution.pool`).
+When the process has exited (its sentinel) and its outbox has ended (EOF; at most
+`_EOF_GRACE` s later, should another process hold the pipe open), the worker is gone: its tasks
+fail with `WorkerDied` (the one it was running, if it died on its own) or `Collateral` (queued
+ones, and those of workers this pool ended itself), and the pool is replaced as a whole: a new
+generation of workers is started and warmed, the survivors of the old one are ended with
+SIGTERM. A task past its budget gets `BudgetExceeded` and its worker is killed (SIGKILL), which
+replaces the generation the same way (its other tasks are collateral, resubmitted for free by
+`app.execution.pool`). A worker whose inbox ends (the service is gone) exits.
 """
 
 from __future__ import annotations
@@ -27,12 +31,11 @@ import multiprocessing
 import os
 import pickle
 import signal
-import threading
+import struct
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from multiprocessing.connection import Connection, wait
+from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
-from multiprocessing.queues import Queue
 from typing import Any, TypeVar
 
 from app.execution import worker
@@ -57,22 +60,31 @@ T = TypeVar("T")
 
 _STOP_GRACE = 5.0  # [s] a worker told to stop has this long to finish before SIGTERM
 _RESPAWN_DELAY = 1.0  # [s] before replacing a generation that never became warm (no hot loop)
+_EOF_GRACE = 1.0  # [s] after its exit, a worker's outbox has this long to end before it is gone
+_STOP = b""  # the message that tells a worker to stop
 
 
 # ------------------------------------------------------------------- inside a worker process
 
 
 def serve(
-    inbox: Queue[bytes | None],
+    inbox: Connection,
     outbox: Connection,
     warm_stations: tuple[int, ...],
     warmup_timeout: float,
 ) -> None:
-    """A worker's life: warm up, then run tasks from the inbox until told to stop (None)."""
+    """A worker's life: warm up, then run tasks from the inbox until told to stop (an empty
+    message) or the inbox ends (the service is gone)."""
     # Ctrl-C in a terminal reaches the whole process group: the service decides when we stop.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     outbox.send(("warm", worker.warm(warm_stations, warmup_timeout)))
-    while (message := inbox.get()) is not None:
+    while True:
+        try:
+            message = inbox.recv_bytes()
+        except (EOFError, OSError):
+            return
+        if message == _STOP:
+            return
         seq, fn, task, reports = pickle.loads(message)
         outbox.send(("started", seq))
         outbox.send_bytes(_outcome(seq, fn, task, outbox if reports else None))
@@ -100,6 +112,65 @@ def _outcome(seq: int, fn: Callable[..., Any], task: Any, outbox: Connection | N
 # ------------------------------------------------------------------------ in the service
 
 
+def _frame(payload: bytes) -> bytes:
+    """`payload` framed as `Connection.send_bytes` frames it."""
+    if len(payload) > 0x7FFFFFFF:
+        return struct.pack("!iQ", -1, len(payload)) + payload
+    return struct.pack("!i", len(payload)) + payload
+
+
+def _owned(end: Connection) -> int:
+    """A pipe end's file descriptor, taken from its Connection (closed) for the event loop."""
+    fd = os.dup(end.fileno())
+    end.close()
+    return fd
+
+
+class _Frames(asyncio.Protocol):
+    """The outbox's bytes as messages: each complete frame unpickled and handed to
+    `on_message`, the pipe's end to `on_end`."""
+
+    def __init__(
+        self, on_message: Callable[[tuple[Any, ...]], None], on_end: Callable[[], None]
+    ) -> None:
+        self.on_message = on_message
+        self.on_end = on_end
+        self.buffer = bytearray()
+
+    def data_received(self, data: bytes) -> None:
+        self.buffer += data
+        while (frame := self._next_frame()) is not None:
+            try:
+                message = pickle.loads(frame)
+            except Exception as error:  # a result that does not unpickle here
+                log.exception("unreadable message from a worker")
+                message = ("unreadable", repr(error))
+            self.on_message(message)
+
+    def _next_frame(self) -> bytes | None:
+        buffer = self.buffer
+        if len(buffer) < 4:
+            return None
+        (size,) = struct.unpack_from("!i", buffer)
+        start = 4
+        if size == -1:
+            if len(buffer) < 12:
+                return None
+            (size,) = struct.unpack_from("!Q", buffer, 4)
+            start = 12
+        if len(buffer) < start + size:
+            return None
+        frame = bytes(buffer[start : start + size])
+        del buffer[: start + size]
+        return frame
+
+    def eof_received(self) -> bool | None:
+        return None  # let the transport close: connection_lost follows
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self.on_end()
+
+
 @dataclass(eq=False)
 class _Dispatch:
     """A task handed to a worker; `started` is the event loop's time when the worker began it."""
@@ -114,13 +185,16 @@ class _Dispatch:
 class _Worker:
     generation: int
     process: BaseProcess
-    inbox: Queue[bytes | None]
-    outbox: Connection
+    inbox: asyncio.WriteTransport | None = None
+    outbox: asyncio.ReadTransport | None = None
     assigned: dict[int, _Dispatch] = field(default_factory=dict)  # by seq, in hand-over order
     report: worker.WarmReport | None = None
     ended_by_pool: bool = False  # the pool sent it SIGTERM or SIGKILL
     exited: bool = False
-    reader: threading.Thread | None = None
+    outbox_ended: bool = False
+    exitcode: int | None = None
+    process_ended: bool = False
+    gone: asyncio.Event = field(default_factory=asyncio.Event)
 
     @property
     def pid(self) -> int:
@@ -144,6 +218,7 @@ class LocalWorkers:
         self._detail = "not started"
         self._loop: asyncio.AbstractEventLoop | None = None
         self._context: Any = None
+        self._connecting: set[asyncio.Task[None]] = set()
 
     # -------------------------------------------------------------------- what it reports
 
@@ -201,83 +276,99 @@ class LocalWorkers:
         self._detail = f"warming {workers} worker(s) for N = {stations}"
 
     def _spawn(self, generation: int) -> _Worker:
-        inbox: Queue[bytes | None] = self._context.Queue()
+        assert self._loop is not None
+        inbox_end, inbox = self._context.Pipe(duplex=False)
         outbox, outbox_end = self._context.Pipe(duplex=False)
         process = self._context.Process(
             target=serve,
-            args=(inbox, outbox_end, self.warm_stations, self.settings.warmup_timeout),
+            args=(inbox_end, outbox_end, self.warm_stations, self.settings.warmup_timeout),
             name=f"flexwing-worker-{generation}",
             daemon=True,
         )
         process.start()
-        outbox_end.close()  # the worker holds the only writing end: its death is our EOF
-        new = _Worker(generation, process, inbox, outbox)
-        new.reader = threading.Thread(
-            target=self._read, args=(new,), name=f"flexwing-reader-{process.pid}", daemon=True
-        )
-        new.reader.start()
+        # The worker holds the only other ends: its death is our EOF (and EPIPE).
+        inbox_end.close()
+        outbox_end.close()
+        new = _Worker(generation, process)
+        self._loop.add_reader(process.sentinel, self._on_sentinel, new)
+        connecting = self._loop.create_task(self._connect(new, _owned(inbox), _owned(outbox)))
+        self._connecting.add(connecting)
+        connecting.add_done_callback(self._connecting.discard)
         return new
+
+    async def _connect(self, w: _Worker, inbox: int, outbox: int) -> None:
+        """The event loop's transports on a new worker's pipe ends (file descriptors this
+        pool owns from here)."""
+        assert self._loop is not None
+        reading = open(outbox, "rb", buffering=0)  # noqa: SIM115 (the transport closes it)
+        writing = open(inbox, "wb", buffering=0)  # noqa: SIM115
+        frames = _Frames(lambda message: self._on_message(w, message), lambda: self._on_end(w))
+        # The inbox first: a worker's first message (warm) may make it take tasks at once.
+        w.inbox, _ = await self._loop.connect_write_pipe(asyncio.BaseProtocol, writing)
+        w.outbox, _ = await self._loop.connect_read_pipe(lambda: frames, reading)
+        if w.exited:
+            self._discard(w)
 
     async def close(self) -> None:
         """Let every worker finish what it holds (a few seconds at most), then end it."""
         self._closing = True
         self._ready.set()  # wakes tasks waiting for a warm pool: they see `_closing`
+        if self._connecting:
+            await asyncio.wait(set(self._connecting))
         workers = self._workers
         for w in workers:
-            with contextlib.suppress(Exception):
-                w.inbox.put(None)
-        await asyncio.to_thread(self._join, workers, _STOP_GRACE)
+            if w.inbox is not None and not w.inbox.is_closing():
+                w.inbox.write(_frame(_STOP))
+        await self._gone(workers, _STOP_GRACE)
         for w in workers:
             if not w.exited:
                 w.ended_by_pool = True
                 with contextlib.suppress(Exception):
                     w.process.terminate()
-        await asyncio.to_thread(self._join, workers, _STOP_GRACE)
+        await self._gone(workers, _STOP_GRACE)
         for w in workers:
             self._discard(w)
-        # Dropped now, their queues' semaphores are released before the process exits (else the
-        # resource tracker warns of "leaked semaphore objects").
         self._workers = []
         workers.clear()
         self.metrics.ready.set(0)
         self._detail = "closed"
 
     @staticmethod
-    def _join(workers: list[_Worker], timeout: float) -> None:
-        for w in workers:
-            if w.reader is not None:
-                w.reader.join(timeout)
+    async def _gone(workers: list[_Worker], timeout: float) -> None:
+        waiting = [asyncio.ensure_future(w.gone.wait()) for w in workers if not w.exited]
+        if waiting:
+            _, pending = await asyncio.wait(waiting, timeout=timeout)
+            for task in pending:
+                task.cancel()
 
-    @staticmethod
-    def _discard(w: _Worker) -> None:
-        """Let go of a worker's inbox without waiting for its feeder thread."""
-        w.inbox.close()
-        w.inbox.cancel_join_thread()
+    def _discard(self, w: _Worker) -> None:
+        """Let go of a worker's pipes and sentinel."""
+        assert self._loop is not None
+        with contextlib.suppress(Exception):
+            self._loop.remove_reader(w.process.sentinel)
+        for transport in (w.inbox, w.outbox):
+            if transport is not None:
+                transport.close()
 
     # ----------------------------------------------------------- messages from the workers
 
-    def _read(self, w: _Worker) -> None:
-        """Reader thread: every message of `w` to the event loop, then its exit."""
-        sentinel = w.process.sentinel
-        while True:
-            ready = wait([w.outbox, sentinel])
-            if w.outbox not in ready:
-                break  # the process ended and nothing is left to read
-            try:
-                message = w.outbox.recv()
-            except (EOFError, OSError):
-                break
-            except Exception as error:  # a result that does not unpickle here
-                log.exception("unreadable message from worker %d", w.pid)
-                message = ("unreadable", repr(error))
-            self._post(self._on_message, w, message)
-        w.process.join(_STOP_GRACE)
-        self._post(self._on_exit, w, w.process.exitcode)
-
-    def _post(self, callback: Callable[..., None], *args: Any) -> None:
+    def _on_sentinel(self, w: _Worker) -> None:
+        """The process has exited: it is gone once its outbox has ended too (or a grace
+        later, should another process still hold the pipe)."""
         assert self._loop is not None
-        with contextlib.suppress(RuntimeError):  # the loop has closed: nobody is waiting
-            self._loop.call_soon_threadsafe(callback, *args)
+        self._loop.remove_reader(w.process.sentinel)
+        w.process.join(0)  # reaps it: the exit code is known from here
+        w.exitcode = w.process.exitcode
+        w.process_ended = True
+        if w.outbox_ended:
+            self._on_exit(w)
+        else:
+            self._loop.call_later(_EOF_GRACE, self._on_exit, w)
+
+    def _on_end(self, w: _Worker) -> None:
+        w.outbox_ended = True
+        if w.process_ended:
+            self._on_exit(w)
 
     def _on_message(self, w: _Worker, message: tuple[Any, ...]) -> None:
         kind = message[0]
@@ -315,8 +406,11 @@ class LocalWorkers:
         else:
             dispatch.future.set_exception(value)
 
-    def _on_exit(self, w: _Worker, exitcode: int | None) -> None:
+    def _on_exit(self, w: _Worker) -> None:
+        if w.exited:
+            return
         w.exited = True
+        exitcode = w.exitcode
         # A task is collateral if it never started, or its worker was ended by the pool (SIGTERM)
         # because another one died; a worker killed from outside shows SIGKILL.
         ended_by_us = w.ended_by_pool and exitcode == -signal.SIGTERM
@@ -328,6 +422,7 @@ class LocalWorkers:
             dispatch.future.set_exception(error(f"worker {w.pid} exited ({exitcode})"))
         w.assigned.clear()
         self._discard(w)
+        w.gone.set()
         if w.generation == self._generation and not w.ended_by_pool and not self._closing:
             log.warning("worker %d exited unexpectedly (%s)", w.pid, exitcode)
             self._replace("died")
@@ -398,12 +493,12 @@ class LocalWorkers:
         dispatch = _Dispatch(self._seq, self._loop.create_future(), progress=progress)
         # Its caller may be gone when it fails (a timeout, a cancelled task): nobody must care.
         dispatch.future.add_done_callback(lambda f: f.cancelled() or f.exception())
+        if w.inbox is None or w.inbox.is_closing():  # the worker is gone
+            raise Collateral("the worker is gone")
         w.assigned[self._seq] = dispatch
-        try:
-            w.inbox.put(message)
-        except (ValueError, OSError):  # the inbox was closed: the worker is gone
-            del w.assigned[self._seq]
-            raise Collateral("the worker is gone") from None
+        # Buffered by the transport when the pipe is full: the loop never blocks here. A
+        # worker that dies before reading it fails the task as collateral (`_on_exit`).
+        w.inbox.write(_frame(message))
         return dispatch
 
     async def _outcome(self, w: _Worker, dispatch: _Dispatch, timeout: float) -> Any:

@@ -116,12 +116,17 @@ def _build(model: RequestModel, members: tuple[str, ...]) -> Any:
     return flat(**nested)
 
 
+_PLAIN = {float, int, str, bool, type(None)}  # JSON scalars: a list of them is taken as it is
+
+
 def to_solver(value: Any) -> Any:
     """A validated request value as the solver takes it: models built, lists as tuples."""
     if isinstance(value, RequestModel):
         return value.to_solver()
     if isinstance(value, list):
-        if not any(isinstance(item, RequestModel | list) for item in value):
+        if set(map(type, value)) <= _PLAIN or not any(
+            isinstance(item, RequestModel | list) for item in value
+        ):
             return tuple(value)  # numbers and names: nothing inside to name an error from
         items = []
         for index, item in enumerate(value):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from solver.errors import InvalidInput
-from solver.fields import Limits, Spec, number, stations
+from solver.fields import Limits, Spec, digest, number, stations
 
 CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), form="per_station")
 SWEEP = Spec("deg", "sweep", Limits(gt=-60.0, lt=60.0))
@@ -79,3 +79,26 @@ def test_a_bad_station_array_is_named_with_its_reason(value: object, reason: str
     with pytest.raises(InvalidInput) as raised:
         stations("wing.chord", value, 3, CHORD)
     assert raised.value.reason == reason
+
+
+@pytest.mark.parametrize(
+    ("plain", "general"),
+    [
+        (1.5, np.float64(1.5)),
+        (2, np.int64(2)),
+        (-0.0, np.float64(0.0)),
+        (np.arange(3.0), np.arange(3)),  # float64 array (fast path) and an int array
+        (np.array(4.0), np.float64(4.0)),  # a 0-d array and a numpy scalar
+    ],
+    ids=["float", "int", "minus-zero", "array", "0-d-array"],
+)
+def test_the_digest_of_a_value_does_not_depend_on_its_python_type(plain, general):
+    """Plain floats, ints and float64 arrays are digested by a fast path: the same bytes as
+    the general one, so a cache keyed by digest cannot tell them apart."""
+    assert digest(plain) == digest(general)
+    assert digest([plain]) == digest((general,))
+
+
+def test_a_number_and_the_array_of_it_differ_from_other_numbers():
+    assert digest(1.0) != digest(1.0 + 2**-52)
+    assert digest(1.0) != digest(np.array([1.0, 1.0]))
