@@ -1,11 +1,14 @@
 """Worker death, time budgets and overload against a live server (`fault_server`: CasADi's
 virtual machine, so a wing of 150 stations takes about a second per solve, long enough to kill
-its worker while it runs; the sweep budget is 0.5 s, and at most 3 solves may be pending)."""
+its worker while it runs; the sweep budget is 0.5 s, and at most 3 solves may be pending); and
+the pipes between the pool and a worker, in process."""
 
 from __future__ import annotations
 
 import contextlib
+import multiprocessing
 import os
+import pickle
 import signal
 import time
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -14,6 +17,7 @@ from typing import Any
 import httpx
 import pytest
 
+from app.execution.processes import _frame, _Frames, serve
 from tests import study
 from tests.app.conftest import Server
 
@@ -137,3 +141,48 @@ def test_overload_is_shed_with_503_and_retry_after(fault_server: Server) -> None
 @pytest.mark.parametrize("path", ["/healthz", "/readyz"])
 def test_the_service_still_answers_after_the_faults(fault_server: Server, path: str) -> None:
     assert httpx.get(fault_server.base_url + path, timeout=10).status_code == 200
+
+
+@pytest.mark.parametrize("how", ["told-to-stop", "service-gone"])
+def test_a_worker_stops_when_told_or_when_the_service_is_gone(how: str) -> None:
+    """A worker runs tasks until an empty message, or until its inbox ends (the service
+    died): it never outlives the service waiting on a pipe nobody writes."""
+
+    context = multiprocessing.get_context("forkserver")  # as the pool starts its workers
+    inbox_end, inbox = context.Pipe(duplex=False)
+    outbox, outbox_end = context.Pipe(duplex=False)
+    process = context.Process(target=serve, args=(inbox_end, outbox_end, (), 1.0), daemon=True)
+    process.start()
+    inbox_end.close()
+    outbox_end.close()
+    try:
+        assert outbox.recv()[0] == "warm"
+        inbox.send_bytes(pickle.dumps((7, abs, -2.5, False)))
+        assert outbox.recv() == ("started", 7)
+        assert pickle.loads(outbox.recv_bytes()) == ("done", 7, True, 2.5)
+        if how == "told-to-stop":
+            inbox.send_bytes(b"")  # the pool's stop message
+        else:
+            inbox.close()
+        process.join(30)
+        assert process.exitcode == 0
+    finally:
+        if process.is_alive():
+            process.kill()
+
+
+@pytest.mark.parametrize("chunk", [1, 3, 4096, 1 << 20], ids=["bytewise", "3", "4k", "whole"])
+def test_the_outbox_is_read_as_whole_messages_however_the_pipe_splits_it(chunk: int) -> None:
+    """A worker's messages reach the pool one by one and complete, whatever sizes the pipe
+    hands the bytes over in (a batch chunk's answers are megabytes)."""
+
+    messages = [("started", 1), ("done", 1, True, bytes(70_000)), ("progress", 2, 1, 3)]
+    stream = b"".join(_frame(pickle.dumps(m)) for m in messages)
+    got: list[Any] = []
+    ended: list[bool] = []
+    frames = _Frames(got.append, lambda: ended.append(True))
+    for start in range(0, len(stream), chunk):
+        frames.data_received(stream[start : start + chunk])
+    assert got == messages
+    frames.connection_lost(None)
+    assert ended == [True]
