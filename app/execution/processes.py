@@ -293,8 +293,17 @@ class LocalWorkers:
         self._loop.add_reader(process.sentinel, self._on_sentinel, new)
         connecting = self._loop.create_task(self._connect(new, _owned(inbox), _owned(outbox)))
         self._connecting.add(connecting)
-        connecting.add_done_callback(self._connecting.discard)
+        connecting.add_done_callback(lambda task: self._connected(new, task))
         return new
+
+    def _connected(self, w: _Worker, task: asyncio.Task[None]) -> None:
+        """A worker the loop could not connect to is ended: its exit replaces the pool."""
+        self._connecting.discard(task)
+        error = None if task.cancelled() else task.exception()
+        if error is not None:
+            log.error("no pipe to worker %d: %r", w.pid, error)
+            with contextlib.suppress(Exception):
+                w.process.kill()
 
     async def _connect(self, w: _Worker, inbox: int, outbox: int) -> None:
         """The event loop's transports on a new worker's pipe ends (file descriptors this
