@@ -178,6 +178,42 @@ export function renderField(field, parent, { form } = {}) {
   return control;
 }
 
+/** Replace `table`'s header with a "#" corner and one column header per column ({key, label,
+ * unit}), each with the id `${idPrefix}${key}` and, where `describe(key)` gives one, a title. */
+export function fillHeader(table, columns, { idPrefix, describe = () => undefined }) {
+  const head = table.tHead ?? table.createTHead();
+  head.replaceChildren();
+  const headRow = head.insertRow();
+  const corner = document.createElement("th");
+  corner.scope = "col";
+  corner.textContent = "#";
+  headRow.append(corner);
+  for (const column of columns) {
+    const th = document.createElement("th");
+    th.scope = "col";
+    th.id = `${idPrefix}${column.key}`;
+    th.textContent = column.label;
+    if (column.unit) {
+      const unit = document.createElement("span");
+      unit.className = "unit";
+      unit.textContent = ` [${column.unit}]`;
+      th.append(unit);
+    }
+    const description = describe(column.key);
+    if (description) th.title = description;
+    headRow.append(th);
+  }
+}
+
+/** A body row's index cell: a row header `i`, its id `id`. */
+export function rowHeader(row, id, i) {
+  const index = document.createElement("th");
+  index.scope = "row";
+  index.id = id;
+  index.textContent = String(i);
+  row.append(index);
+}
+
 /** The value of a control as the request should carry it: a number, or null when empty or not a
  * number (the service then names the field and says why), or the text of a text/select field. */
 export function controlValue(control, kind) {

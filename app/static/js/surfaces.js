@@ -2,7 +2,7 @@
 // into the request's wing.control_surfaces. Each cell's data-path names the request's value, so a
 // 422 about it (wing.control_surfaces[1].hinge) is shown next to that cell.
 
-import { CONTROL_SURFACE_COLUMNS, applyLimits } from "./fields.js";
+import { CONTROL_SURFACE_COLUMNS, applyLimits, fillHeader, rowHeader } from "./fields.js";
 
 export class ControlSurfaceTable {
   /** `table`: a <table> with a <thead> and <tbody>; `schema`: ControlSurface from /openapi.json
@@ -27,37 +27,15 @@ export class ControlSurfaceTable {
 
   /** Fill with `surfaces` ([{name, start, end, hinge, deflection, kind}, ...]). */
   fill(surfaces) {
-    const head = this.table.tHead;
-    head.replaceChildren();
-    const headRow = head.insertRow();
-    const corner = document.createElement("th");
-    corner.scope = "col";
-    corner.textContent = "#";
-    headRow.append(corner);
-    for (const column of CONTROL_SURFACE_COLUMNS) {
-      const th = document.createElement("th");
-      th.scope = "col";
-      th.id = `surface-col-${column.key}`;
-      th.textContent = column.label;
-      if (column.unit) {
-        const unit = document.createElement("span");
-        unit.className = "unit";
-        unit.textContent = ` [${column.unit}]`;
-        th.append(unit);
-      }
-      const description = this.schema?.properties?.[column.key]?.description;
-      if (description) th.title = description;
-      headRow.append(th);
-    }
+    fillHeader(this.table, CONTROL_SURFACE_COLUMNS, {
+      idPrefix: "surface-col-",
+      describe: (key) => this.schema?.properties?.[key]?.description,
+    });
     const body = this.table.tBodies[0];
     body.replaceChildren();
     surfaces.forEach((surface, i) => {
       const row = body.insertRow();
-      const index = document.createElement("th");
-      index.scope = "row";
-      index.id = `surface-row-${i}`;
-      index.textContent = String(i);
-      row.append(index);
+      rowHeader(row, `surface-row-${i}`, i);
       for (const column of CONTROL_SURFACE_COLUMNS) {
         const cell = row.insertCell();
         let input;

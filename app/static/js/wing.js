@@ -1,7 +1,7 @@
 // The wing: planform numbers -> stations, and the editable station table (the request's wing is
 // always read from the table; the planform numbers only fill it).
 
-import { STATION_COLUMNS } from "./fields.js";
+import { STATION_COLUMNS, fillHeader, rowHeader } from "./fields.js";
 
 export function linspace(start, stop, n) {
   if (n === 1) return [start];
@@ -62,33 +62,12 @@ export class StationTable {
   /** Fill the table with `stations` ({y: [...], chord: [...], ...}); a number fills a column. */
   fill(stations) {
     const n = Math.max(...this.columns.map((c) => (Array.isArray(stations[c.key]) ? stations[c.key].length : 0)), 0);
-    const head = this.table.tHead ?? this.table.createTHead();
-    head.replaceChildren();
-    const headRow = head.insertRow();
-    const corner = document.createElement("th");
-    corner.scope = "col";
-    corner.textContent = "#";
-    headRow.append(corner);
-    for (const column of this.columns) {
-      const th = document.createElement("th");
-      th.scope = "col";
-      th.id = `col-${column.key}`;
-      th.textContent = column.label;
-      const unit = document.createElement("span");
-      unit.className = "unit";
-      unit.textContent = ` [${column.unit}]`;
-      th.append(unit);
-      headRow.append(th);
-    }
+    fillHeader(this.table, this.columns, { idPrefix: "col-" });
     const body = this.table.tBodies[0] ?? this.table.createTBody();
     body.replaceChildren();
     for (let i = 0; i < n; i++) {
       const row = body.insertRow();
-      const index = document.createElement("th");
-      index.scope = "row";
-      index.id = `row-${i}`;
-      index.textContent = String(i);
-      row.append(index);
+      rowHeader(row, `row-${i}`, i);
       for (const column of this.columns) {
         const cell = row.insertCell();
         const input = document.createElement("input");
