@@ -877,7 +877,10 @@ def test_an_aileron_sweeps_its_effectiveness_and_reverses_before_divergence(
     assert marks["first"]["aileron"] == "reversal"
     verdict = page.inner_text("#controls-first")
     assert "reversal comes first, at 20.62 m/s" in verdict
-    assert page.is_visible("#fig-controls canvas#chart-effectiveness")
+    # Chart.js sizes its canvas on its own frame after the figure is shown: wait for it (a
+    # check at one instant raced it on a loaded CI machine).
+    chart = page.locator("#fig-controls canvas#chart-effectiveness")
+    chart.wait_for(state="visible", timeout=10_000)
     # A solve of the wing carries the surface (and its panels); figure 14.5 outlines it on both
     # halves, in every view (its hinge line and deflected trailing edge, closed).
     solved = tab.solved()
