@@ -23,6 +23,7 @@ from app.jobs.operations import Operation, submission_type
 from app.jobs.views import job_view
 from app.problems import FieldError, Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
+from app.security import owner as owner_of
 from app.security import principal
 
 __all__ = ["ACCEPTED", "install", "make_router", "respond_async"]
@@ -365,7 +366,6 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
 
     async def prefer_respond_async(
         request: Request,
-        owner: Principal,
         prefer: Annotated[
             str | None,
             Header(
@@ -390,7 +390,9 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
         except ValidationError as error:
             errors = [dict(e) | {"loc": ("body", *e["loc"])} for e in error.errors()]
             raise RequestValidationError(errors) from None
-        job = manager.submit(operation, body, principal=owner, prefix=None)
+        # The owner read here, not as a dependency: every synchronous request passes this
+        # dependency, and only these become jobs.
+        job = manager.submit(operation, body, principal=owner_of(request), prefix=None)
         response = _accepted(manager, job.row())
         response.headers["Preference-Applied"] = "respond-async"
         raise JobAccepted(response)

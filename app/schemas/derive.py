@@ -17,6 +17,7 @@ Limits set by the service's settings (most stations, most sweep points) are mark
 from __future__ import annotations
 
 import dataclasses
+import functools
 import inspect
 import typing
 from collections.abc import Callable
@@ -98,20 +99,33 @@ class RequestModel(BaseModel):
         values: dict[str, Any] = dict(self.__fixed__)
         for name, members in self.__flattened__.items():
             values[name] = _build(self, members)
-        flattened = {m for members in self.__flattened__.values() for m in members}
-        for name in type(self).model_fields:
-            if name not in flattened:
-                with solver.fields.prefixed(name):
-                    values[name] = to_solver(getattr(self, name))
+        for name in _own_fields(type(self)):
+            values[name] = _named(name, getattr(self, name))
         return self.__solver__(**values)
+
+
+@functools.cache
+def _own_fields(model: type[RequestModel]) -> tuple[str, ...]:
+    """The fields of `model` taken as they are (not members of a flattened one)."""
+    flattened = {m for members in model.__flattened__.values() for m in members}
+    return tuple(name for name in model.model_fields if name not in flattened)
+
+
+def _named(name: str, value: Any) -> Any:
+    """`to_solver(value)`, an `InvalidInput` inside named from `name` on. Only a model or a
+    list can raise one: a scalar passes as it is, without the naming's cost (every field of
+    every request comes through here)."""
+    if not isinstance(value, RequestModel | list):
+        return value
+    with solver.fields.prefixed(name):
+        return to_solver(value)
 
 
 def _build(model: RequestModel, members: tuple[str, ...]) -> Any:
     """A flattened field's solver value from its members, named from the request's root."""
     nested: dict[str, Any] = {}
     for name in members:
-        with solver.fields.prefixed(name):
-            nested[name] = to_solver(getattr(model, name))
+        nested[name] = _named(name, getattr(model, name))
     flat = type(model).__flat_types__[members]  # type: ignore[attr-defined]
     return flat(**nested)
 
@@ -128,11 +142,7 @@ def to_solver(value: Any) -> Any:
             isinstance(item, RequestModel | list) for item in value
         ):
             return tuple(value)  # numbers and names: nothing inside to name an error from
-        items = []
-        for index, item in enumerate(value):
-            with solver.fields.prefixed(f"[{index}]"):
-                items.append(to_solver(item))
-        return tuple(items)
+        return tuple(_named(f"[{index}]", item) for index, item in enumerate(value))
     return value
 
 
