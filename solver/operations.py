@@ -9,6 +9,7 @@ service's result cache keys by.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
@@ -53,6 +54,14 @@ __all__ = [
     "SolveInput",
     "SweepInput",
 ]
+
+
+def _identity(operation: object, **in_force: object) -> bytes:
+    """What an operation input's answers are cached by (`fields.digest`): its fields, those
+    given as None by the values in force (`in_force`): no options and the default options
+    are one question, answered once."""
+    values = {f.name: getattr(operation, f.name) for f in dataclasses.fields(operation)}  # type: ignore[arg-type]
+    return fields.digest((type(operation).__name__, values | in_force))
 
 
 def _check_meshed(wing: Wing, options: SolverOptions | None) -> None:
@@ -122,7 +131,7 @@ class SolveInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest(self)
+        return _identity(self, options=self.modelled)
 
     def run(self, progress: Progress | None = None) -> Equilibrium:
         """The answer (`progress` is for the operations that have parts: none here)."""
@@ -170,7 +179,7 @@ class SweepInput:
     @cached_property
     def key(self) -> bytes:
         """The same airspeeds given as a list or as a range are one sweep."""
-        return fields.digest((self.wing, self.flight, self.airspeeds, self.options))
+        return fields.digest((self.wing, self.flight, self.airspeeds, self.modelled))
 
     def run(self, progress: Progress | None = None) -> AirspeedSweep:
         """The answer; `progress(done, total)` as each airspeed is answered."""
@@ -200,7 +209,7 @@ class OptimizeInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest(self)
+        return _identity(self, options=self.modelled)
 
     def run(self, progress: Progress | None = None) -> OptimalDesign:
         """The answer (`progress` is for the operations that have parts: none here)."""
@@ -263,7 +272,15 @@ class FlutterInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest((self.wing, self.flight, self.airspeeds, self.options, self.flutter))
+        return fields.digest(
+            (
+                self.wing,
+                self.flight,
+                self.airspeeds,
+                self.modelled,
+                self.flutter or FlutterOptions(),
+            )
+        )
 
     def run(self, progress: Progress | None = None) -> FlutterResult:
         """The answer; `progress(done, total)` as each airspeed is analysed."""
@@ -352,7 +369,7 @@ class RollInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest(self)
+        return _identity(self, options=self.modelled)
 
     def run(self, progress: Progress | None = None) -> RollResponse:
         """The answer (`progress` is for the operations that have parts: none here)."""
@@ -414,7 +431,7 @@ class ControlsInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest((self.wing, self.flight, self.airspeeds, self.options))
+        return fields.digest((self.wing, self.flight, self.airspeeds, self.modelled))
 
     def run(self, progress: Progress | None = None) -> ControlSweep:
         """The answer; `progress(done, total)` as each airspeed is answered."""

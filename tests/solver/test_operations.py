@@ -271,6 +271,47 @@ def test_no_options_are_modelled_as_the_default_options() -> None:
     assert none.modelled == given.modelled == solver.SolverOptions()
 
 
+@functools.cache
+def _massive_wing() -> solver.Wing:
+    return solver.Wing.create(
+        **study.study_arrays(12), mass=solver.MassModel.create(12, 0.75, 0.5, 0.1)
+    )
+
+
+def test_no_flutter_options_and_the_default_ones_are_one_question() -> None:
+    build = DEFAULTS_GIVEN["flutter"]
+    assert build().key == build(flutter=solver.FlutterOptions()).key
+    assert build().key != build(flutter=solver.FlutterOptions(about="jig")).key
+
+
+def _design() -> solver.DesignProblem:
+    return solver.DesignProblem(
+        solver.DesignCondition(12.0, lift=100.0), solver.Design(solver.TwistDesign(4))
+    )
+
+
+# Each operation's input with no options, and with those it then runs with, written out.
+DEFAULTS_GIVEN = {
+    "solve": lambda **o: solver.SolveInput(_small_wing(), study.flight(10.0), **o),
+    "sweep": lambda **o: solver.SweepInput(
+        _small_wing(), solver.FlightCondition(None, alpha=5.0), (8.0, 10.0), **o
+    ),
+    "optimize": lambda **o: solver.OptimizeInput(_small_wing(), _design(), **o),
+    "flutter": lambda **o: solver.FlutterInput(
+        _massive_wing(), solver.FlightCondition(None, alpha=2.0), (20.0, 40.0), **o
+    ),
+}  # roll and controls: a control surface needs more chordwise panels than the default's one
+
+
+@pytest.mark.parametrize("build", list(DEFAULTS_GIVEN.values()), ids=list(DEFAULTS_GIVEN))
+def test_no_options_and_the_default_options_are_one_question(build: Any) -> None:
+    """Answered alike (`modelled`), so cached alike: a client that sends `options: {}` and one
+    that sends none share one answer."""
+    none, given = build(), build(options=solver.SolverOptions())
+    assert none.key == given.key
+    assert build(options=K2).key != none.key  # an option that is not the default still counts
+
+
 def _sweep(velocities: Any, **flight: Any) -> solver.SweepInput:
     condition = solver.FlightCondition(None, **({"alpha": 5.0} | flight))
     return solver.SweepInput(study.study_wing(), condition, velocities)
