@@ -64,6 +64,13 @@ class Metrics:
             buckets=_LATENCY_BUCKETS,
             registry=r,
         )
+        self.worker_seconds = Histogram(
+            "flexwing_worker_task_duration_seconds",
+            "Time a job ran inside a local worker process, without the trip there and back "
+            "(FLEXWING_EXECUTOR=process) [s].",
+            buckets=_LATENCY_BUCKETS,
+            registry=r,
+        )
         self.cache = Counter(
             "flexwing_cache_lookups",
             "Cache lookups by cache (result, warm_start) and result (hit, miss).",

@@ -143,15 +143,24 @@ def time_posts(client: httpx.Client, path: str, bodies: list[bytes]) -> list[flo
     return times
 
 
-def pool_seconds(client: httpx.Client, kind: str) -> tuple[float, int]:
-    """Sum and count of the server's job times in workers (dispatch to result), from /metrics."""
+def histogram(client: httpx.Client, name: str, labels: str = "") -> tuple[float, int]:
+    """Sum and count of one of the server's histograms, from /metrics (`labels` as written
+    there, e.g. '{kind="solve"}')."""
     total, count = 0.0, 0
     for line in client.get("/metrics").text.splitlines():
-        if line.startswith(f'flexwing_solve_duration_seconds_sum{{kind="{kind}"}}'):
+        if line.startswith(f"{name}_sum{labels} "):
             total = float(line.split()[-1])
-        if line.startswith(f'flexwing_solve_duration_seconds_count{{kind="{kind}"}}'):
+        if line.startswith(f"{name}_count{labels} "):
             count = int(float(line.split()[-1]))
     return total, count
+
+
+def pool_seconds(client: httpx.Client) -> tuple[float, int, float, int]:
+    """Sum and count of the server's /solve jobs from dispatch to result, and of the time
+    they ran inside the workers."""
+    pool = histogram(client, "flexwing_solve_duration_seconds", '{kind="solve"}')
+    own = histogram(client, "flexwing_worker_task_duration_seconds")
+    return (*pool, *own)
 
 
 def sweep_body(wing: dict[str, Any], density: float = 1.225) -> bytes:
@@ -159,22 +168,27 @@ def sweep_body(wing: dict[str, Any], density: float = 1.225) -> bytes:
     return json.dumps(body).encode()
 
 
-def http_latency(base: str, count: int) -> tuple[dict[str, list[float]], float]:
-    """Sequential latencies, and the mean time of a /solve job in the pool [s]."""
+def http_latency(base: str, count: int) -> tuple[dict[str, list[float]], float, dict[str, float]]:
+    """Sequential latencies, the mean time of a /solve job in the pool (dispatch to result)
+    and the mean time the /solve runs ran inside their workers, by run [s]."""
     wing = study_wing()
     velocities = distinct_velocities(1)
     out: dict[str, list[float]] = {}
     with httpx.Client(base_url=base, timeout=60) as client:
         # Prime the connection and the state cache (one stored equilibrium).
         time_posts(client, "/solve", [solve_body(wing, 10.0)])
-        before = pool_seconds(client, "solve")
+        before = pool_seconds(client)
         out["solve"] = time_posts(
             client, "/solve", [solve_body(wing, next(velocities)) for _ in range(count)]
         )
-        after = pool_seconds(client, "solve")
+        after = pool_seconds(client)
         pool_mean = (after[0] - before[0]) / (after[1] - before[1])
+        in_worker_mean = (after[2] - before[2]) / (after[3] - before[3])
         out["cached"] = time_posts(client, "/solve", [solve_body(wing, 10.0)] * count)
+        before = pool_seconds(client)
         out["solve_raw"] = asyncio.run(raw_posts(base, "/solve", wing, count))
+        after = pool_seconds(client)
+        in_worker_raw = (after[2] - before[2]) / (after[3] - before[3])
         sweeps = max(count // 10, 20)
         # The density varies by 1e-12 so the result cache misses; each worker has traced the
         # branch of this wing (the first two sweeps), which the solver caches per wing and alpha.
@@ -183,7 +197,7 @@ def http_latency(base: str, count: int) -> tuple[dict[str, list[float]], float]:
         out["sweep_seen"] = time_posts(client, "/sweep", seen[2:])
         new = [sweep_body(study_wing(1 + 1e-9 * (i + 1))) for i in range(max(count // 20, 10))]
         out["sweep_new"] = time_posts(client, "/sweep", new)
-    return out, pool_mean
+    return out, pool_mean, {"solve": in_worker_mean, "solve_raw": in_worker_raw}
 
 
 class RawClient:
@@ -349,7 +363,7 @@ def main() -> None:
     print(f"study's wing, N = 30, alpha 5 deg; {load_average()}")
     bare = bare_solver(args.requests // 2)
     with server(args.url) as base:
-        http, pool_mean = http_latency(base, args.requests)
+        http, pool_mean, in_worker = http_latency(base, args.requests)
         loads = {
             kind: asyncio.run(throughput(base, args.clients, args.seconds, kind))
             for kind in ("httpx", "raw")
@@ -384,6 +398,14 @@ def main() -> None:
     print("/solve p50 over the worker's own solve p50 (issue 27: within 1 ms):")
     for name, label in (("solve", "httpx client"), ("solve_raw", "raw client")):
         print(f"  {label:<12} {ms(statistics.median(http[name]) - own):>10}")
+    # Side by side in the same requests: the workers time each task themselves.
+    print("/solve mean over the mean time the same requests ran in the workers:")
+    for name, label in (("solve", "httpx client"), ("solve_raw", "raw client")):
+        mean = statistics.mean(http[name])
+        print(
+            f"  {label:<12} {ms(mean - in_worker[name]):>10}   "
+            f"({ms(mean)} - {ms(in_worker[name])} in the worker)"
+        )
     print("web-layer overhead (HTTP p50 minus bare p50, and their ratio):")
     for name, bare_name in (
         ("solve", "solve_cold"),

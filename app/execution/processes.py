@@ -10,7 +10,9 @@ as the pickled (seq, fn, task, reports) and an empty message to stop; a worker s
     ("warm", WarmReport)         once, after compiling or loading the warm mesh sizes;
     ("started", seq)             when it begins task `seq` (its time budget starts here);
     ("progress", seq, done, total)  as a task that reports its progress goes;
-    ("done", seq, ok, value)     with the task's result, or the exception it raised.
+    ("done", seq, ok, value, seconds)  with the task's result, or the exception it raised,
+                                 and the time it ran in the worker [s]
+                                 (flexwing_worker_task_duration_seconds).
 
 When the process has exited (its sentinel) and its outbox has ended (EOF; at most
 `_EOF_GRACE` s later, should another process hold the pipe open), the worker is gone: its tasks
@@ -32,6 +34,7 @@ import os
 import pickle
 import signal
 import struct
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
@@ -91,22 +94,24 @@ def serve(
 
 
 def _outcome(seq: int, fn: Callable[..., Any], task: Any, outbox: Connection | None) -> bytes:
-    """The pickled ("done", seq, ok, value) message of one task; an unpicklable error as text.
-    With an `outbox`, the task reports its progress there as it goes."""
+    """The pickled ("done", seq, ok, value, seconds) message of one task; an unpicklable
+    error as text. With an `outbox`, the task reports its progress there as it goes."""
 
     def progress(done: int, total: int) -> None:
         assert outbox is not None
         outbox.send(("progress", seq, done, total))
 
+    started = time.perf_counter()
     try:
         value, ok = (fn(task) if outbox is None else fn(task, progress)), True
     except Exception as error:
         value, ok = error, False
+    seconds = time.perf_counter() - started
     try:
-        return pickle.dumps(("done", seq, ok, value))
+        return pickle.dumps(("done", seq, ok, value, seconds))
     except Exception as error:
         failure = RuntimeError(f"{type(value).__name__}: {value} ({error})")
-        return pickle.dumps(("done", seq, False, failure))
+        return pickle.dumps(("done", seq, False, failure, seconds))
 
 
 # ------------------------------------------------------------------------ in the service
@@ -405,8 +410,8 @@ class LocalWorkers:
         self._ready.set()
         self.metrics.ready.set(1)
 
-    @staticmethod
-    def _on_done(w: _Worker, seq: int, ok: bool, value: Any) -> None:
+    def _on_done(self, w: _Worker, seq: int, ok: bool, value: Any, seconds: float) -> None:
+        self.metrics.worker_seconds.observe(seconds)
         dispatch = w.assigned.pop(seq, None)
         if dispatch is None or dispatch.future.done():
             return  # its caller gave up (a timeout, a cancelled task)

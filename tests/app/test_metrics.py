@@ -23,6 +23,7 @@ PUBLISHED = {
     "flexwing_http_request_duration_seconds": ("histogram", ("route", "method")),
     "flexwing_solves": ("counter", ("kind", "outcome")),
     "flexwing_solve_duration_seconds": ("histogram", ("kind",)),
+    "flexwing_worker_task_duration_seconds": ("histogram", ()),
     "flexwing_cache_lookups": ("counter", ("cache", "result")),
     "flexwing_worker_restarts": ("counter", ("reason",)),
     "flexwing_requests_shed": ("counter", ()),
