@@ -11,7 +11,10 @@ import os
 import pickle
 import signal
 import time
+from collections.abc import Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
+from multiprocessing.connection import Connection
+from multiprocessing.process import BaseProcess
 from typing import Any
 
 import httpx
@@ -143,38 +146,10 @@ def test_the_service_still_answers_after_the_faults(fault_server: Server, path: 
     assert httpx.get(fault_server.base_url + path, timeout=10).status_code == 200
 
 
-@pytest.mark.parametrize("how", ["told-to-stop", "service-gone"])
-def test_a_worker_stops_when_told_or_when_the_service_is_gone(how: str) -> None:
-    """A worker runs tasks until an empty message, or until its inbox ends (the service
-    died): it never outlives the service waiting on a pipe nobody writes."""
-
-    context = multiprocessing.get_context("forkserver")  # as the pool starts its workers
-    inbox_end, inbox = context.Pipe(duplex=False)
-    outbox, outbox_end = context.Pipe(duplex=False)
-    process = context.Process(target=serve, args=(inbox_end, outbox_end, (), 1.0), daemon=True)
-    process.start()
-    inbox_end.close()
-    outbox_end.close()
-    try:
-        assert outbox.recv()[0] == "warm"
-        inbox.send_bytes(pickle.dumps((7, abs, -2.5, False)))
-        assert outbox.recv() == ("started", 7)
-        assert pickle.loads(outbox.recv_bytes())[:4] == ("done", 7, True, 2.5)
-        if how == "told-to-stop":
-            inbox.send_bytes(b"")  # the pool's stop message
-        else:
-            inbox.close()
-        process.join(30)
-        assert process.exitcode == 0
-    finally:
-        if process.is_alive():
-            process.kill()
-
-
-def test_a_worker_says_how_long_each_task_ran_inside_it() -> None:
-    """The time in the worker, apart from the trip there and back: what the service's own
-    overhead is measured against (flexwing_worker_task_duration_seconds)."""
-
+@contextlib.contextmanager
+def _a_worker() -> Iterator[tuple[Connection, Connection, BaseProcess]]:
+    """A real worker process started as the pool starts them (forkserver), with no mesh to
+    warm: (its inbox, its outbox, the process); killed on the way out if still running."""
     context = multiprocessing.get_context("forkserver")
     inbox_end, inbox = context.Pipe(duplex=False)
     outbox, outbox_end = context.Pipe(duplex=False)
@@ -184,6 +159,32 @@ def test_a_worker_says_how_long_each_task_ran_inside_it() -> None:
     outbox_end.close()
     try:
         assert outbox.recv()[0] == "warm"
+        yield inbox, outbox, process
+    finally:
+        if process.is_alive():
+            process.kill()
+
+
+@pytest.mark.parametrize("how", ["told-to-stop", "service-gone"])
+def test_a_worker_stops_when_told_or_when_the_service_is_gone(how: str) -> None:
+    """A worker runs tasks until an empty message, or until its inbox ends (the service
+    died): it never outlives the service waiting on a pipe nobody writes."""
+    with _a_worker() as (inbox, outbox, process):
+        inbox.send_bytes(pickle.dumps((7, abs, -2.5, False)))
+        assert outbox.recv() == ("started", 7)
+        assert pickle.loads(outbox.recv_bytes())[:4] == ("done", 7, True, 2.5)
+        if how == "told-to-stop":
+            inbox.send_bytes(b"")  # the pool's stop message
+        else:
+            inbox.close()
+        process.join(30)
+        assert process.exitcode == 0
+
+
+def test_a_worker_says_how_long_each_task_ran_inside_it() -> None:
+    """The time in the worker, apart from the trip there and back: what the service's own
+    overhead is measured against (flexwing_worker_task_duration_seconds)."""
+    with _a_worker() as (inbox, outbox, process):
         inbox.send_bytes(pickle.dumps((3, time.sleep, 0.2, False)))
         assert outbox.recv() == ("started", 3)
         kind, seq, ok, value, seconds = pickle.loads(outbox.recv_bytes())
@@ -192,9 +193,7 @@ def test_a_worker_says_how_long_each_task_ran_inside_it() -> None:
         assert 0.2 <= seconds < 10
         inbox.send_bytes(b"")
         process.join(30)
-    finally:
-        if process.is_alive():
-            process.kill()
+        assert process.exitcode == 0
 
 
 @pytest.mark.parametrize("chunk", [1, 3, 4096, 1 << 20], ids=["bytewise", "3", "4k", "whole"])
