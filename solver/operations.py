@@ -3,8 +3,8 @@ depends on, declared once (`solver.fields`), and `run()` answers it.
 
 These are the web service's request bodies too (`app.schemas` derives them), and what its
 workers run, so a request changes form once, into one of these, between the route and the
-answer. Each one's `key` is its canonical identity (equal inputs, equal keys), which the
-service's result cache keys by.
+answer. Each one's `key` is its canonical identity (equal inputs, equal keys; no options and
+the default options are equal), which the service's result cache keys by.
 """
 
 from __future__ import annotations
