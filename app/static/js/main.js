@@ -760,6 +760,7 @@ async function runControls() {
   state.controlRun = { request, response };
   renderControls();
   $("download-json").disabled = false;
+  $("download-controls").disabled = false;
   setIdle(`Control effectiveness of ${response.reversals.length} surface${response.reversals.length === 1 ? "" : "s"} at ${response.points.length} airspeeds.`);
 }
 
@@ -810,6 +811,7 @@ async function runFlutter() {
   state.flutter = { request, response };
   renderFlutter();
   $("download-json").disabled = false;
+  $("download-flutter").disabled = false;
   setIdle(`Flutter: ${response.points.length} airspeeds, ${response.modes.length} modes.`);
 }
 
@@ -968,6 +970,46 @@ function downloadSweep() {
     ["reason", points.map((p) => p.no_equilibrium?.reason ?? null)],
   ];
   downloadText("flexwing-sweep.csv", "text/csv", toCSV(columns));
+}
+
+/** Per airspeed, each surface's derivatives (in the unit the API gives), effectiveness and hinge moment. */
+function downloadControls() {
+  const { points, reversals } = state.controlRun.response;
+  const columns = [
+    ["velocity [m/s]", points.map((p) => p.velocity)],
+    ["status", points.map((p) => p.status)],
+  ];
+  for (const { name } of reversals) {
+    const of = (p) => p.controls.find((c) => c.name === name);
+    const unit = points.map(of).find((c) => c)?.unit ?? "";
+    const values = (key) => points.map((p) => of(p)?.[key] ?? null);
+    columns.push(
+      [`${name} derivative [${unit}]`, values("derivative")],
+      [`${name} rigid_derivative [${unit}]`, values("rigid_derivative")],
+      [`${name} effectiveness [-]`, values("effectiveness")],
+      [`${name} hinge_moment [N m]`, values("hinge_moment")],
+    );
+  }
+  columns.push(["reason", points.map((p) => p.no_equilibrium?.reason ?? null)]);
+  downloadText("flexwing-controls.csv", "text/csv", toCSV(columns));
+}
+
+/** The V-g and V-f data: per airspeed, each mode's damping ratio and frequency. */
+function downloadFlutter() {
+  const { points, modes } = state.flutter.response;
+  const columns = [
+    ["velocity [m/s]", points.map((p) => p.velocity)],
+    ["status", points.map((p) => p.status)],
+    ["dynamic_pressure [Pa]", points.map((p) => p.dynamic_pressure)],
+  ];
+  modes.forEach((_, m) => {
+    columns.push(
+      [`mode ${m + 1} damping [-]`, points.map((p) => p.damping?.[m] ?? null)],
+      [`mode ${m + 1} frequency [rad/s]`, points.map((p) => p.frequency?.[m] ?? null)],
+    );
+  });
+  columns.push(["divergence_rate [1/s]", points.map((p) => p.divergence_rate ?? null)], ["reason", points.map((p) => p.reason ?? null)]);
+  downloadText("flexwing-flutter.csv", "text/csv", toCSV(columns));
 }
 
 // ---------------------------------------------------------------------------------- JSON I/O
@@ -1145,6 +1187,8 @@ function wire() {
   $("download-stations").addEventListener("click", downloadStations);
   $("download-panels").addEventListener("click", downloadPanels);
   $("download-sweep").addEventListener("click", downloadSweep);
+  $("download-controls").addEventListener("click", downloadControls);
+  $("download-flutter").addEventListener("click", downloadFlutter);
   for (const button of document.querySelectorAll(".export-png")) {
     button.addEventListener("click", () => exportFigure(button));
   }

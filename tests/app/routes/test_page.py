@@ -11,6 +11,7 @@ strings, to Playwright (a string predicate is evaluated with eval, which the pol
 from __future__ import annotations
 
 import contextlib
+import csv
 import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -881,6 +882,13 @@ def test_an_aileron_sweeps_its_effectiveness_and_reverses_before_divergence(
     # check at one instant raced it on a loaded CI machine).
     chart = page.locator("#fig-controls canvas#chart-effectiveness")
     chart.wait_for(state="visible", timeout=10_000)
+    # The curve as a CSV: a row per airspeed, the surface's columns named with its unit.
+    with page.expect_download() as info:
+        page.click("#download-controls")
+    rows = list(csv.DictReader(Path(info.value.path()).read_text().splitlines()))
+    assert [float(r["velocity [m/s]"]) for r in rows] == curve["x"]
+    assert [float(r["aileron effectiveness [-]"]) for r in rows] == pytest.approx(curve["y"])
+    assert all(r["aileron derivative [N m/deg]"] for r in rows)
     # A solve of the wing carries the surface (and its panels); figure 14.5 outlines it on both
     # halves, in every view (its hinge line and deflected trailing edge, closed).
     solved = tab.solved()
@@ -963,6 +971,14 @@ def test_a_flutter_run_draws_v_g_and_v_f_with_the_flutter_speed(
     above = [g for v, g in zip(damping["x"], damping["y"], strict=True) if v > onset["velocity"]]
     assert below[-1] > 0 > above[0]
     assert len(figure["series"]["shape_heave_0"]["x"]) == 12  # the first modes' shapes
+    # V-g and V-f as a CSV: a row per airspeed, two columns per mode.
+    with page.expect_download() as info:
+        page.click("#download-flutter")
+    rows = list(csv.DictReader(Path(info.value.path()).read_text().splitlines()))
+    assert [float(r["velocity [m/s]"]) for r in rows] == damping["x"]
+    column = f"mode {onset['mode'] + 1} damping [-]"
+    assert [float(r[column]) for r in rows] == pytest.approx(damping["y"])
+    assert f"mode {modes} frequency [rad/s]" in rows[0]
     words = page.inner_text("#flutter-status")
     assert f"Flutter at {onset['velocity']:.2f} m/s" in words and "Flutter comes first" in words
     assert page.get_attribute("#fig-flutter", "data-status") == "flutter"
