@@ -245,8 +245,19 @@ export function getPath(obj, path) {
 // /openapi.json. The default row is the study's aileron (shared/seed).
 export const CONTROL_SURFACE_COLUMNS = [
   { key: "name", label: "name", unit: "", kind: "text", value: "aileron" },
-  { key: "start", label: "start", unit: "of b/2", value: 0.55 },
-  { key: "end", label: "end", unit: "of b/2", value: 0.95 },
+  { key: "start", label: "start", unit: "b/2 or m", value: 0.55 },
+  { key: "end", label: "end", unit: "b/2 or m", value: 0.95 },
+  {
+    key: "extent_unit",
+    label: "start, end in",
+    unit: "",
+    kind: "select",
+    value: "fraction",
+    options: [
+      ["fraction", "fractions of b/2"],
+      ["m", "m from the root"],
+    ],
+  },
   { key: "hinge", label: "hinge", unit: "x/c", value: 0.75 },
   { key: "deflection", label: "deflection", unit: "deg, TE down", value: 5 },
   {

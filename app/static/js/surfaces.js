@@ -54,7 +54,8 @@ export class ControlSurfaceTable {
         input.dataset.path = `wing.control_surfaces[${i}].${column.key}`;
         input.setAttribute("aria-labelledby", `surface-col-${column.key} surface-row-${i}`);
         applyLimits(input, this.schema?.properties?.[column.key]);
-        const value = surface[column.key] ?? column.value;
+        // What a loaded surface leaves out is the API's default (a new row is given whole).
+        const value = surface[column.key] ?? this.schema?.properties?.[column.key]?.default ?? column.value;
         input.value = value == null ? "" : String(value);
         cell.append(input);
       }

@@ -785,6 +785,25 @@ def test_loaded_json_keeps_what_the_editor_cannot_show_and_its_options(
     assert "airfoil" not in again["wing"] and "options" not in again
 
 
+def test_a_surface_given_in_metres_stays_in_metres(visit: Callable[..., Visit]) -> None:
+    """A loaded surface whose extent is in metres shows so in its row and is sent so (the
+    table once had no such column: 2.75-4.75 m went out as fractions of the semispan, a 422
+    for a wing it did not describe); what it leaves out is the API's default, not the table's
+    new-row values (it once became a 5 deg deflection)."""
+    aileron = {"name": "aileron", "start": 2.75, "end": 4.75, "extent_unit": "m", "kind": "aileron"}
+    body = study.solve_request(12.0, options={"chordwise_panels": 4})
+    body["wing"]["control_surfaces"] = [aileron]
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    tab.load_json(json.dumps(body))
+    assert page.input_value("#surface-extent_unit-0") == "m"
+    assert page.input_value("#surface-end-0") == "4.75"
+    sent = tab.solved()["wing"]["control_surfaces"]
+    assert sent == [aileron | {"hinge": 0.75, "deflection": 0}]  # ControlSurface's defaults
+    assert tab.errors_but(0) == []
+
+
 def test_a_sweep_polled_into_a_rate_limit_waits_and_draws_its_answer(
     visit: Callable[..., Visit],
 ) -> None:
@@ -859,6 +878,7 @@ def test_an_aileron_sweeps_its_effectiveness_and_reverses_before_divergence(
             "name": "aileron",
             "start": 0.55,
             "end": 0.95,
+            "extent_unit": "fraction",
             "hinge": 0.75,
             "deflection": 5,
             "kind": "aileron",
