@@ -301,6 +301,14 @@ export const MASS_FIELDS = [
   { key: "inertia_per_length", path: "wing.mass.inertia_per_length", label: "Inertia per length (about the CG)", unit: "kg m", value: 0.02 },
 ];
 
+// wing.mass.concentrated: a store, an engine or a balance weight at a station (new rows at the tip).
+export const CONCENTRATED_MASS_COLUMNS = [
+  { key: "station", label: "station", unit: "index, 0 = root", kind: "integer", value: null },
+  { key: "mass", label: "mass", unit: "kg", value: 1 },
+  { key: "inertia", label: "inertia (about its CG)", unit: "kg m^2", value: 0 },
+  { key: "offset", label: "CG aft of the elastic axis", unit: "m", value: 0 },
+];
+
 export const FLUTTER_FIELDS = [
   { key: "flutter_start", path: "velocities.start", label: "From", unit: "m/s", value: 2 },
   { key: "flutter_stop", path: "velocities.stop", label: "To", unit: "m/s", value: 21 },

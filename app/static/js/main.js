@@ -5,6 +5,7 @@ import * as api from "./api.js";
 import { downloadBlob, downloadJSON, downloadText, toCSV } from "./download.js";
 import {
   CHORDWISE_FIELD,
+  CONCENTRATED_MASS_COLUMNS,
   FLIGHT_FIELDS,
   FLUTTER_FIELDS,
   MASS_FIELDS,
@@ -21,6 +22,7 @@ import {
 } from "./fields.js";
 import * as figures from "./figures.js";
 import { askForKey, installKeyBox } from "./key.js";
+import { RowTable } from "./rows.js";
 import { ControlSurfaceTable } from "./surfaces.js";
 import { StationTable, stationsFromPlanform } from "./wing.js";
 
@@ -87,10 +89,22 @@ function updateSurfaces({ raise = false } = {}) {
     : "";
 }
 
+const concentrated = new RowTable($("concentrated-table"), {
+  columns: CONCENTRATED_MASS_COLUMNS,
+  path: "wing.mass.concentrated",
+  id: "concentrated",
+  onChange: () => updateConcentrated(),
+});
+
+function updateConcentrated() {
+  $("concentrated-count").textContent = concentrated.rows ? String(concentrated.rows) : "none";
+}
+
 function setMass(on) {
   state.mass = on;
   $("mass-on").checked = on;
   $("mass").hidden = !on;
+  $("concentrated-details").hidden = !on;
   $("flutter-hint").textContent = on
     ? "Enter in a flutter field runs it."
     : 'Needs the wing\'s mass: tick "the wing has a mass model" under Wing.';
@@ -153,6 +167,7 @@ function wing() {
     const mass = {};
     for (const field of MASS_FIELDS) setPath(mass, field.path, value(field.key));
     result.mass = mass.wing.mass;
+    if (concentrated.rows) result.mass.concentrated = concentrated.read();
   }
   for (const { field, control } of state.extra) {
     if (field.path?.startsWith("wing.") && field.kind !== "column") {
@@ -248,6 +263,7 @@ async function addOptionalFields() {
     applyLimits(control, property);
     if (property?.description) control.title = property.description;
   }
+  if (schemas.ConcentratedMass) concentrated.setSchema(schemas.ConcentratedMass);
   const stations = table.read(); // before a column is added: read() reads every column's cells
   let columns = false;
   for (const field of OPTIONAL_FIELDS) {
@@ -348,7 +364,7 @@ function showFieldErrors(errors) {
     const controls = controlsFor(field);
     if (!controls.length) unplaced.push({ field, reason });
     for (const control of controls) {
-      const inTable = control.closest("#stations-table, #surfaces-table") !== null;
+      const inTable = control.closest("#stations-table, #surfaces-table, #concentrated-table") !== null;
       attachError(control, inTable ? reason : `${stationWords(field)}${reason}`);
       const details = control.closest("details");
       if (details) details.open = true;
@@ -1038,8 +1054,8 @@ function loadJSON(text) {
     return;
   }
   const known = new Set([...table.columns.map((c) => c.key), ...state.extra.map((e) => e.field.path?.replace("wing.", ""))]);
-  // Control surfaces go into their table; a uniform mass model (three numbers) into its fields,
-  // any other (per-station lists, concentrated masses) is kept and sent as given.
+  // Control surfaces go into their table; a uniform mass model (three numbers) into its fields and
+  // its concentrated masses into theirs; any other (per-station lists) is kept and sent as given.
   const surfaceList = Array.isArray(w.control_surfaces) && !$("surfaces-details").hidden ? w.control_surfaces : [];
   if (Array.isArray(w.control_surfaces) && !$("surfaces-details").hidden) known.add("control_surfaces");
   surfaces.fill(surfaceList);
@@ -1049,11 +1065,16 @@ function loadJSON(text) {
   }
   const mass = w.mass;
   const simpleMass =
-    mass && MASS_FIELDS.every((field) => typeof mass[field.path.split(".").at(-1)] === "number") && !(mass.concentrated?.length);
+    mass &&
+    MASS_FIELDS.every((field) => typeof mass[field.path.split(".").at(-1)] === "number") &&
+    (mass.concentrated == null || Array.isArray(mass.concentrated));
   if (simpleMass) {
     known.add("mass");
     for (const field of MASS_FIELDS) setControl(field.key, mass[field.path.split(".").at(-1)]);
   }
+  concentrated.fill(simpleMass ? (mass.concentrated ?? []) : []);
+  updateConcentrated();
+  if (simpleMass && mass.concentrated?.length) $("concentrated-details").open = true;
   setMass(Boolean(simpleMass));
   // A tube spar of one diameter and one wall thickness goes into the spar's fields; any other
   // spar (per-station lists, a fraction of the thickness) is kept and sent as given.
@@ -1153,6 +1174,14 @@ function wire() {
     updateSurfaces();
   });
   $("mass-on").addEventListener("change", () => setMass($("mass-on").checked));
+  $("add-concentrated").addEventListener("click", () => {
+    concentrated.append({ station: table.rows - 1 }); // at the tip, where a store flutters most
+    updateConcentrated();
+  });
+  $("remove-concentrated").addEventListener("click", () => {
+    concentrated.removeRow();
+    updateConcentrated();
+  });
   $("planform").addEventListener("input", () => state.mode === "planform" && regenerate());
   $("planform").addEventListener("change", () => state.mode === "planform" && regenerate());
   for (const radio of document.querySelectorAll('input[name="mode"]')) {

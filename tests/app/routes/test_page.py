@@ -1005,6 +1005,39 @@ def test_a_flutter_run_draws_v_g_and_v_f_with_the_flutter_speed(
     assert tab.errors_but(0) == []
 
 
+def test_a_tip_store_goes_into_its_table_and_moves_the_flutter_speed(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """A loaded concentrated mass (the Goland wing's tip store, 50 kg, 0.2 m aft) shows in the
+    concentrated-mass table and is sent with the uniform mass; the page's flutter speed is the
+    API's for that body, ~151 m/s against the clean wing's ~137 m/s (the continuous reference
+    with this store: 150.9 m/s, tests/solver/test_flutter.py); a row added by the button goes
+    to the tip."""
+    body = _goland()
+    store = {"station": 11, "mass": 50.0, "inertia": 5.0, "offset": 0.2}
+    body["wing"]["mass"]["concentrated"] = [store]
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    tab.load_json(json.dumps(body))
+    assert page.is_checked("#mass-on")
+    assert [page.input_value(f"#concentrated-{k}-0") for k in store] == ["11", "50", "5", "0.2"]
+    assert page.inner_text("#concentrated-count") == "1"
+    sent = _ran(tab, "flutter", "#flutter-button")["request"]
+    assert sent["wing"]["mass"] == body["wing"]["mass"]
+    with server.client() as client:
+        expected = client.post("/flutter", json=sent).json()
+    assert expected["flutter"]["velocity"] == pytest.approx(151, abs=4)  # 12 stations, strip
+    marks = tab.figure("flutter")["marks"]
+    assert marks["flutter_velocity"] == pytest.approx(expected["flutter"]["velocity"])
+    page.click("#add-concentrated")
+    assert page.input_value("#concentrated-station-1") == "11"  # the tip of 12 stations
+    page.click("#remove-concentrated")
+    page.click("#remove-concentrated")
+    assert page.inner_text("#concentrated-count") == "none"
+    assert tab.errors_but(0) == []
+
+
 def test_the_study_wing_with_mass_does_not_flutter_in_range_and_says_so(
     visit: Callable[..., Visit],
 ) -> None:
