@@ -3,7 +3,8 @@
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/batch_benchmark.py [--items 1000]
 
 Deployments measured, each a real uvicorn service on loopback (and real `dask scheduler` /
-`dask worker` processes, one thread each, sharing FLEXWING_CACHE_DIR):
+`dask worker` processes, one thread each, sharing FLEXWING_CACHE_DIR, their statistical profiler
+off, see docs/deployment.md):
 
 - the local pool, FLEXWING_WORKERS=2 (the default on this 2-core machine);
 - Dask with 1 worker, then with 2 workers.
@@ -154,10 +155,13 @@ def dask_cluster(tmp: Path, env: dict[str, str], workers: int) -> Iterator[tuple
         scheduler = [str(DASK), "scheduler", "--host", "127.0.0.1", "--port", str(port)]
         log = tmp / "scheduler.log"
         child = stack.enter_context(process([*scheduler, "--no-dashboard"], log, env))
+        # Without Dask's statistical profiler (nobody reads a dashboard here): it samples the
+        # worker's threads every 10 ms, a few per cent of their CPU (docs/deployment.md).
+        quiet = env | {"DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED": "False"}
         for n in range(workers):
             args = [str(DASK), "worker", address, "--nthreads", "1", "--no-dashboard"]
             args += ["--no-nanny", "--name", f"w{n}"]
-            stack.enter_context(process(args, tmp / f"w{n}.log", env))
+            stack.enter_context(process(args, tmp / f"w{n}.log", quiet))
         yield address, child.pid
 
 
