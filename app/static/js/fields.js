@@ -249,13 +249,13 @@ export const CONTROL_SURFACE_COLUMNS = [
   { key: "end", label: "end", unit: "b/2 or m", value: 0.95 },
   {
     key: "extent_unit",
-    label: "start, end in",
+    label: "extent in",
     unit: "",
     kind: "select",
     value: "fraction",
     options: [
-      ["fraction", "fractions of b/2"],
-      ["m", "m from the root"],
+      ["fraction", "b/2"],
+      ["m", "m"],
     ],
   },
   { key: "hinge", label: "hinge", unit: "x/c", value: 0.75 },
