@@ -36,6 +36,13 @@ class CamberLine:
     naca: tuple[float, float] | None = None
     thickness: float | None = None  # [-] of the chord, when known (NACA 4-digit)
 
+    def __post_init__(self) -> None:
+        # Read-only copies: a wing and its digest never change under it (`fields.digested_once`).
+        for name in ("x", "camber"):
+            array = np.array(getattr(self, name), dtype=float)
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
+
     def at(self, x: np.ndarray) -> np.ndarray:
         """camber / chord at x / chord [-]."""
         x = np.asarray(x, dtype=float)

@@ -20,17 +20,20 @@ import struct
 import types
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
 from solver.errors import InvalidInput
+
+T = TypeVar("T")
 
 __all__ = [
     "FORMS",
     "Limits",
     "Spec",
     "digest",
+    "digested_once",
     "integer",
     "is_number",
     "number",
@@ -355,15 +358,33 @@ def _feed(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
         raise TypeError(f"no canonical identity for {type(value).__name__}")
 
 
+_ONCE: set[type] = set()  # immutable input types whose instances keep their digest
+_KEPT = "_fields_digest"  # where an instance of one keeps it
+
+
+def digested_once(cls: type[T]) -> type[T]:
+    """Class decorator for an immutable input dataclass (frozen, its arrays read-only): each
+    instance keeps its digest once computed, so one that many requests share (the service keeps
+    the wings it has built, `app.schemas.derive`) is digested once."""
+    _ONCE.add(cls)
+    return cls
+
+
 def _feed_dataclass(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
     """A dataclass instance: its own digest (its type's name, then each field by name), fed
-    as b"D" + that digest, computed once per instance within one value."""
+    as b"D" + that digest, computed once per instance within one value (and once for good for
+    a type `digested_once`)."""
+    kind = type(value)
     known = seen.get(id(value))
+    if known is None and kind in _ONCE:
+        known = value.__dict__.get(_KEPT)
     if known is None:
         inner = hashlib.blake2b(digest_size=16)
-        inner.update(type(value).__name__.encode())
-        for name, label in _field_labels(type(value)):
+        inner.update(kind.__name__.encode())
+        for name, label in _field_labels(kind):
             inner.update(label)
             _feed(inner, getattr(value, name), seen)
         known = seen[id(value)] = inner.digest()
+        if kind in _ONCE:
+            object.__setattr__(value, _KEPT, known)  # frozen: set past its guard, once
     hasher.update(b"D" + known)

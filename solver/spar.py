@@ -127,6 +127,11 @@ class TubeSpar:
     material: Material
 
     def __post_init__(self) -> None:
+        # Read-only copies: a wing and its digest never change under it (`fields.digested_once`).
+        for name in ("outer_diameter", "wall_thickness"):
+            array = np.array(getattr(self, name), dtype=float)
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
         outer, wall = self.outer_diameter, self.wall_thickness
         if outer.shape != wall.shape or outer.ndim != 1:
             raise InvalidInput(

@@ -19,7 +19,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import inspect
+import threading
 import typing
+from collections import OrderedDict
 from collections.abc import Callable
 from typing import Annotated, Any, ClassVar, Literal, TypeVar, Union
 
@@ -93,15 +95,47 @@ class RequestModel(BaseModel):
     __fixed__: ClassVar[dict[str, Any]] = {}  # fields given without the API: their values
     __flattened__: ClassVar[dict[str, tuple[str, ...]]] = {}  # solver field -> its members
     __per_station__: ClassVar[frozenset[str]] = frozenset()  # fields of up to N values
+    # How many solver inputs of this model to keep, by the request's JSON (0: none): a design
+    # loop sends one wing thousands of times, built and checked once (solver inputs are immutable).
+    __kept__: ClassVar[int] = 0
 
     def to_solver(self) -> Any:
         """The solver input this request describes (`InvalidInput` named from here)."""
+        if self.__kept__:
+            return _kept(self)
+        return self._built()
+
+    def _built(self) -> Any:
         values: dict[str, Any] = dict(self.__fixed__)
         for name, members in self.__flattened__.items():
             values[name] = _build(self, members)
         for name in _own_fields(type(self)):
             values[name] = _named(name, getattr(self, name))
         return self.__solver__(**values)
+
+
+_KEPT: dict[type[RequestModel], OrderedDict[str, Any]] = {}
+_KEEPING = threading.Lock()  # requests are built on the event loop; any other thread waits
+
+
+def _kept(model: RequestModel) -> Any:
+    """`model._built()`, the last `__kept__` of them remembered by their request's JSON (equal
+    JSON, equal values: another spelling of the same numbers is only a miss)."""
+    # Exact: floats as their shortest round-trip repr, every field, a union's member by its shape
+    # (warnings off: a union tries its members in turn, and says so for each it passes over).
+    text = model.model_dump_json(warnings=False)
+    with _KEEPING:
+        kept = _KEPT.setdefault(type(model), OrderedDict())
+        value = kept.get(text)
+        if value is not None:
+            kept.move_to_end(text)
+            return value
+    value = model._built()  # an invalid one raises, and is not kept
+    with _KEEPING:
+        kept[text] = value
+        if len(kept) > model.__kept__:
+            kept.popitem(last=False)
+    return value
 
 
 @functools.cache

@@ -36,6 +36,7 @@ def _with_example(model: Any, example: dict[str, Any]) -> Any:
 
 
 Wing = _with_example(request_model(solver.Wing), STUDY_WING)
+Wing.__kept__ = 64  # the wings last asked about, built and digested once (a few kB each)
 SolveRequest = _with_example(request_model(solver.SolveInput), STUDY_SOLVE)
 SweepRequest = _with_example(request_model(solver.SweepInput), STUDY_SWEEP_REQUEST)
 OptimizeRequest = _with_example(request_model(solver.OptimizeInput), STUDY_OPTIMIZE)

@@ -7,8 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from solver.airfoil import CamberLine
 from solver.errors import InvalidInput
 from solver.fields import Limits, Spec, digest, number, stations
+from tests.study import study_wing
 
 CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), form="per_station")
 SWEEP = Spec("deg", "sweep", Limits(gt=-60.0, lt=60.0))
@@ -67,6 +69,12 @@ def test_one_number_is_every_station_and_the_array_is_read_only():
     [
         pytest.param([1.0, 2.0], "has 2 values but y has 3 stations", id="length"),
         pytest.param([1.0, math.inf, 1.0], "must contain only finite numbers", id="infinite"),
+        pytest.param([1.0, math.nan, 1.0], "must contain only finite numbers", id="nan"),
+        pytest.param(
+            [1.0, 1.0, 200.0],
+            "must be from 0.001 to 100 m at every station (1 mm to 100 m)",
+            id="out-of-range-at-the-top",
+        ),
         pytest.param(
             [1.0, 0.0, 1.0],
             "must be from 0.001 to 100 m at every station (1 mm to 100 m)",
@@ -102,3 +110,16 @@ def test_the_digest_of_a_value_does_not_depend_on_its_python_type(plain, general
 def test_a_number_and_the_array_of_it_differ_from_other_numbers():
     assert digest(1.0) != digest(1.0 + 2**-52)
     assert digest(1.0) != digest(np.array([1.0, 1.0]))
+
+
+def test_a_wing_keeps_its_digest_and_cannot_change_under_it():
+    """A wing (`digested_once`) is digested once for good, which is only right because nothing
+    in it can change: its arrays, its camber lines' and its spar's are read-only."""
+    wing = study_wing(n=12)
+    first = digest(wing)
+    assert wing.__dict__["_fields_digest"]  # kept
+    assert digest(wing) == first == digest(study_wing(n=12))  # and equal to a fresh one's
+    arrays = [wing.y, wing.chord, wing.bending_stiffness, wing.airfoil[0].x, wing.airfoil[0].camber]
+    assert not any(a.flags.writeable for a in arrays)
+    line = CamberLine(np.array([0.0, 0.5, 1.0]), np.array([0.0, 0.02, 0.0]))
+    assert not line.x.flags.writeable and not line.camber.flags.writeable

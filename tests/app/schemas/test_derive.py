@@ -4,6 +4,7 @@ it describes, a refused one named from the request's root."""
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 from collections.abc import Iterator
 from typing import Any
@@ -11,7 +12,14 @@ from typing import Any
 import pytest
 
 import solver
-from app.schemas import FlutterRequest, OptimizeRequest, SolveRequest, SweepRequest, derive
+from app.schemas import (
+    SOLVE_EXAMPLES,
+    FlutterRequest,
+    OptimizeRequest,
+    SolveRequest,
+    SweepRequest,
+    derive,
+)
 from solver import InvalidInput
 from tests import study
 
@@ -161,6 +169,54 @@ def test_a_request_becomes_the_solver_input_it_describes() -> None:
     assert task.flight.required_lift == 600.0 and task.flight.trimmed
     assert task.modelled.chordwise_panels == 2
     assert task.wing.key == study.study_wing().key  # the example's wing is the study's
+
+
+def _stiffened(factor: float) -> dict[str, Any]:
+    body = study.solve_request(12.0)
+    body["wing"]["torsional_stiffness"] = [
+        factor * gj for gj in body["wing"]["torsional_stiffness"]
+    ]
+    return body
+
+
+def test_a_wing_asked_about_again_is_built_once() -> None:
+    """A design loop sends one wing with many flight conditions: its solver wing (validated,
+    digested) is built once and shared, an equal one by value; another wing is another."""
+    first = SolveRequest.model_validate(_stiffened(1.5)).to_solver()
+    again = SolveRequest.model_validate(
+        _stiffened(1.5) | {"flight": study.solve_request(9.0)["flight"]}
+    )
+    assert again.to_solver().wing is first.wing
+    assert again.to_solver().flight.velocity == 9.0  # only the wing is kept
+    other = SolveRequest.model_validate(_stiffened(1.5 * (1 + 1e-12))).to_solver()
+    assert other.wing is not first.wing and other.wing.key != first.wing.key
+
+
+def test_a_wing_given_another_way_is_kept_apart() -> None:
+    """Kept by the request's exact JSON: a spar's diameter as a thickness fraction and one in
+    metres, a NACA section and a camber table, are other wings."""
+    tube = copy.deepcopy(SOLVE_EXAMPLES["tube_spar"]["value"])
+    metres = copy.deepcopy(tube)
+    metres["wing"]["spar"]["outer_diameter"] = 0.02
+    tabled = copy.deepcopy(metres)  # a table has no thickness: the diameter in metres
+    tabled["wing"]["airfoil"] = {"x": [0.0, 0.5, 1.0], "camber": [0.0, 0.02, 0.0]}
+    wings = [SolveRequest.model_validate(b).to_solver().wing for b in (tube, metres, tabled)]
+    assert len({w.key for w in wings}) == 3
+    assert SolveRequest.model_validate(copy.deepcopy(tube)).to_solver().wing is wings[0]
+
+
+def test_only_the_last_wings_are_kept_and_no_invalid_one() -> None:
+    kept = SolveRequest.model_fields["wing"].annotation.__kept__
+    oldest = SolveRequest.model_validate(_stiffened(2.0)).to_solver().wing
+    for i in range(kept):
+        SolveRequest.model_validate(_stiffened(2.0 + (i + 1) * 1e-6)).to_solver()
+    rebuilt = SolveRequest.model_validate(_stiffened(2.0)).to_solver().wing
+    assert rebuilt is not oldest and rebuilt.key == oldest.key  # built again, the same wing
+    bad = study.solve_request(12.0)
+    bad["wing"]["y"] = [0.0, 2.0, 1.0, *bad["wing"]["y"][3:]]  # the solver's check, not pydantic's
+    for _ in range(2):  # refused each time, never remembered as an answer
+        with pytest.raises(InvalidInput, match="increasing"):
+            SolveRequest.model_validate(bad).to_solver()
 
 
 @pytest.mark.parametrize(
