@@ -359,7 +359,7 @@ def _feed(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
 
 
 _ONCE: set[type] = set()  # immutable input types whose instances keep their digest
-_KEPT = "_fields_digest"  # where an instance of one keeps it
+_DIGEST_ATTRIBUTE = "_fields_digest"  # where an instance of one keeps it (in its __dict__)
 
 
 def digested_once(cls: type[T]) -> type[T]:
@@ -377,7 +377,7 @@ def _feed_dataclass(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
     kind = type(value)
     known = seen.get(id(value))
     if known is None and kind in _ONCE:
-        known = value.__dict__.get(_KEPT)
+        known = value.__dict__.get(_DIGEST_ATTRIBUTE)
     if known is None:
         inner = hashlib.blake2b(digest_size=16)
         inner.update(kind.__name__.encode())
@@ -386,5 +386,5 @@ def _feed_dataclass(hasher: Any, value: object, seen: dict[int, bytes]) -> None:
             _feed(inner, getattr(value, name), seen)
         known = seen[id(value)] = inner.digest()
         if kind in _ONCE:
-            object.__setattr__(value, _KEPT, known)  # frozen: set past its guard, once
+            object.__setattr__(value, _DIGEST_ATTRIBUTE, known)  # frozen: set past its guard, once
     hasher.update(b"D" + known)
