@@ -504,11 +504,11 @@ class LocalWorkers:
         self._seq += 1
         # Pickled here: a task that does not pickle fails its own request.
         message = pickle.dumps((self._seq, fn, task, progress is not None))
+        if w.inbox is None or w.inbox.is_closing():  # the worker is gone
+            raise Collateral("the worker is gone")
         dispatch = _Dispatch(self._seq, self._loop.create_future(), progress=progress)
         # Its caller may be gone when it fails (a timeout, a cancelled task): nobody must care.
         dispatch.future.add_done_callback(lambda f: f.cancelled() or f.exception())
-        if w.inbox is None or w.inbox.is_closing():  # the worker is gone
-            raise Collateral("the worker is gone")
         w.assigned[self._seq] = dispatch
         # Buffered by the transport when the pipe is full: the loop never blocks here. A
         # worker that dies before reading it fails the task as collateral (`_on_exit`).
