@@ -150,6 +150,7 @@ _RESOLVED = (
 
 
 @fields.digested_once  # one wing, thousands of requests (a design loop)
+@fields.pickled_once
 @dataclass(frozen=True, eq=False)
 class Wing:
     """A symmetric flexible wing (right half; the left half is mirrored). Build it with

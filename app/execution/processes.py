@@ -525,18 +525,15 @@ class LocalWorkers:
         loop = self._loop
         deadline = loop.time() + timeout
         while True:
-            try:
-                return await asyncio.wait_for(
-                    asyncio.shield(dispatch.future), max(0.0, deadline - loop.time())
-                )
-            except TimeoutError:
-                if dispatch.future.done():
-                    continue
-                started = dispatch.started
-                deadline = (loop.time() if started is None else started) + timeout
-                if deadline > loop.time():
-                    continue
-                dispatch.future.cancel()
-                if w.generation == self._generation and not w.exited:
-                    self._replace("timeout", victim=w)
-                raise BudgetExceeded(timeout) from None
+            # Waiting never cancels the task: a caller that gives up leaves it to its end.
+            await asyncio.wait((dispatch.future,), timeout=max(0.0, deadline - loop.time()))
+            if dispatch.future.done():
+                return dispatch.future.result()
+            started = dispatch.started
+            deadline = (loop.time() if started is None else started) + timeout
+            if deadline > loop.time():
+                continue
+            dispatch.future.cancel()
+            if w.generation == self._generation and not w.exited:
+                self._replace("timeout", victim=w)
+            raise BudgetExceeded(timeout)

@@ -54,14 +54,12 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
     wait = settings.sync_wait if wait is None else min(wait, budget)
     reports = _Relay()
     running = asyncio.ensure_future(service.run(operation, task, reports))
-    try:
-        answered = await asyncio.wait_for(asyncio.shield(running), wait)
-    except TimeoutError:
-        pass
-    else:
+    # Waiting never cancels the work (past the wait it goes on as a job).
+    await asyncio.wait((running,), timeout=wait)
+    if running.done():
         # The worker's bytes as they are: the response model documents them, and is not
         # applied again here (tests/app/schemas/test_responses.py holds them to it).
-        return Response(answered, media_type="application/json")
+        return Response(running.result(), media_type="application/json")
     manager: JobManager = request.app.state.jobs
     total = len(task.airspeeds) if hasattr(task, "airspeeds") else 1
     job = manager.adopt(operation, running, total, principal=owner(request))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -10,6 +11,7 @@ import pytest
 from solver.airfoil import CamberLine
 from solver.errors import InvalidInput
 from solver.fields import Limits, Spec, digest, number, stations
+from solver.inputs import Wing
 from tests.study import study_wing
 
 CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), form="per_station")
@@ -110,6 +112,24 @@ def test_the_digest_of_a_value_does_not_depend_on_its_python_type(plain, general
 def test_a_number_and_the_array_of_it_differ_from_other_numbers():
     assert digest(1.0) != digest(1.0 + 2**-52)
     assert digest(1.0) != digest(np.array([1.0, 1.0]))
+
+
+@pytest.mark.parametrize("digested", [False, True], ids=["pickled-first", "digested-first"])
+def test_a_wing_is_pickled_once_and_unpickles_as_an_equal_wing(digested: bool):
+    """A wing (`pickled_once`) pickles its fields once and sends the same bytes after (the
+    service hands one kept wing to its workers with every request); the copy is the same wing,
+    whether its digest was kept before or not."""
+    wing = study_wing(n=12)
+    if digested:
+        digest(wing)
+    first = pickle.dumps(wing)
+    state = wing.__dict__["_fields_pickle"]
+    assert pickle.dumps(wing) == first and wing.__dict__["_fields_pickle"] is state
+    copy = pickle.loads(first)
+    assert type(copy) is Wing and copy is not wing
+    assert digest(copy) == digest(study_wing(n=12))  # every field, canonically
+    assert np.array_equal(copy.torsional_stiffness, wing.torsional_stiffness)
+    assert "_fields_pickle" not in copy.__dict__  # its own state, should it be sent on
 
 
 def test_a_wing_keeps_its_digest_and_cannot_change_under_it():
