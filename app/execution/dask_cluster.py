@@ -109,6 +109,10 @@ class DaskWorkers:
     def capacity(self) -> int:
         return self._slots.size
 
+    @property
+    def parallelism(self) -> int:
+        return max(1, sum(w.threads for w in self._workers.values()))
+
     def pids(self) -> list[int]:
         return []  # remote processes: see `cluster`
 

@@ -63,6 +63,10 @@ class ExecutorWorkers:
     def capacity(self) -> int:
         return self._slots.size
 
+    @property
+    def parallelism(self) -> int:
+        return self.settings.workers
+
     def pids(self) -> list[int]:
         return []
 

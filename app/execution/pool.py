@@ -174,6 +174,11 @@ class Backend(Protocol):
         """Tasks it runs or holds at once (workers x tasks_per_worker)."""
         ...
 
+    @property
+    def parallelism(self) -> int:
+        """Tasks it runs at the same time (the local workers; a Dask cluster's threads)."""
+        ...
+
     async def start(self) -> None: ...
 
     async def wait_ready(self) -> None: ...
@@ -262,6 +267,11 @@ class WorkerPool:
     def capacity(self) -> int:
         """Tasks the workers run or hold at once: what keeps them all busy."""
         return max(1, self.backend.capacity if self.backend is not None else 1)
+
+    @property
+    def parallelism(self) -> int:
+        """Tasks that run at the same time: `capacity` less those queued behind them."""
+        return max(1, self.backend.parallelism if self.backend is not None else 1)
 
     @property
     def chunk_seconds(self) -> float:

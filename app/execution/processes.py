@@ -243,6 +243,10 @@ class LocalWorkers:
     def capacity(self) -> int:
         return self._slots.size
 
+    @property
+    def parallelism(self) -> int:
+        return self.settings.workers
+
     def pids(self) -> list[int]:
         return [w.pid for w in self._workers if not w.exited]
 

@@ -129,6 +129,10 @@ class _Context:
         return self.manager.service.pool.capacity
 
     @property
+    def parallelism(self) -> int:
+        return self.manager.service.pool.parallelism
+
+    @property
     def chunk_seconds(self) -> float:
         return self.manager.service.pool.chunk_seconds
 

@@ -68,6 +68,7 @@ class Context:
 
     def __init__(self, respond: Callable[[str, Any], Any], lanes: int = 2) -> None:
         self.lanes = lanes
+        self.parallelism = 1
         self.chunk_seconds = 0.05
         self.service = SimpleNamespace(
             answer=self._answer, task=lambda request: request, run_each=self._run_each
@@ -350,19 +351,60 @@ def test_a_chunk_lost_as_a_whole_is_asked_again_item_by_item() -> None:
 def test_chunks_take_about_the_backends_chunk_time(
     items: int, lanes: int, seconds: float, per_item: float | None, sizes: int
 ) -> None:
-    chunks = operations._Chunks(items, lanes, seconds)
+    chunks = operations._Chunks(items, lanes, lanes, seconds)
     chunks.per_item = per_item
     taken = chunks.take()
     assert taken is not None and len(taken) == sizes
 
 
 def test_chunks_cover_every_item_once_in_order() -> None:
-    chunks = operations._Chunks(103, 3)
+    chunks = operations._Chunks(103, 3, 2)
     covered: list[int] = []
     while (taken := chunks.take()) is not None:
         covered.extend(taken)
         chunks.took(len(taken), 0.002 * len(taken))
     assert covered == list(range(103))
+
+
+@pytest.mark.parametrize(
+    ("lanes", "parallelism", "per_item"),
+    [(16, 2, 0.0035), (4, 2, 0.0035), (2, 2, 0.01), (1, 1, 0.01)],
+    ids=["dask-16-lanes-2-threads", "local-4-lanes-2-workers", "no-queue", "one-lane"],
+)
+def test_an_items_worker_time_leaves_out_the_time_its_chunk_queued(
+    lanes: int, parallelism: int, per_item: float
+) -> None:
+    # Every lane's chunk in flight at once; `lanes / parallelism` of them share each worker,
+    # so each comes back after that many times its own worker time.
+    chunks = operations._Chunks(10_000, lanes, parallelism)
+    taken = [chunks.take() for _ in range(lanes)]
+    size = len(taken[0] or ())
+    chunks.per_item = per_item
+    chunks.took(size, size * per_item * lanes / parallelism)
+    assert chunks.per_item == pytest.approx(per_item, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("items", "first", "last_at_most"),
+    [(100, 25, 25), (1000, 64, 63)],
+    ids=["fits-the-lanes-evenly", "tail-shrinks"],
+)
+def test_no_chunk_is_larger_than_a_lanes_share_of_the_unanswered_items(
+    items: int, first: int, last_at_most: int
+) -> None:
+    lanes = 4
+    chunks = operations._Chunks(items, lanes, 2)
+    chunks.per_item = 1e-6  # fast items: as large as the share and _CHUNK allow
+    sizes: list[int] = []
+    while True:
+        share = -(-(items - chunks.next + chunks.unanswered) // lanes)
+        if (taken := chunks.take()) is None:
+            break
+        assert len(taken) <= share
+        sizes.append(len(taken))
+        if chunks.in_flight == lanes:  # the oldest is answered, its lane takes the next
+            chunks.took(sizes[-lanes], 0.01)
+    assert sum(sizes) == items and sizes[0] == first and sizes[-1] <= last_at_most
 
 
 @pytest.mark.parametrize("lanes", [1, 3], ids=["one-lane", "three-lanes"])
