@@ -232,8 +232,8 @@ class _Chunks:
     An item's worker time is its share of its chunk's time in flight, less the time the chunk
     queued: `lanes` chunks in flight share `parallelism` workers (Dask: 16 lanes on 2 threads;
     measured from the lane's clock alone, chunks came out up to 8x too small: a batch of 1,000
-    paid ~110 Dask round trips instead of ~30, and Dask's share fell from 90 % to 79 % of the
-    local pool's throughput, benchmarks/batch_benchmark.py)."""
+    paid ~110 Dask round trips instead of ~30, and Dask reached 79 % of the local pool's
+    throughput where it now reaches 90 %, benchmarks/batch_benchmark.py)."""
 
     def __init__(self, items: int, lanes: int, parallelism: int, seconds: float = 0.05) -> None:
         self.items = items
