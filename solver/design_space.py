@@ -207,13 +207,18 @@ class DesignSpace:
         lift_v = np.zeros(nv)
         lift_v[: self.n_twist] = terms.lift_x[twist_cols] / self.cos_sweep @ self.basis
         record("lift", q * terms.lift, q * terms.lift_x, q * lift_v)
-        drag_v = np.zeros(nv)
-        drag_v[: self.n_twist] = terms.drag_x[twist_cols] / self.cos_sweep @ self.basis
-        record("induced_drag", q * terms.drag, q * terms.drag_x, q * drag_v)
         strips = self.strips @ x[layout.circulation]
         trefftz_x = np.zeros(nx)
         trefftz_x[layout.circulation] = q * (self.trefftz + self.trefftz.T) @ strips @ self.strips
         record("trefftz_drag", q * strips @ self.trefftz @ strips, trefftz_x, np.zeros(nv))
+        if self.system.aerodynamics == "strip":
+            # Two-dimensional sections have no near field: their induced drag is the far
+            # field's (`solver.trefftz`).
+            record("induced_drag", values["trefftz_drag"], trefftz_x, np.zeros(nv))
+        else:
+            drag_v = np.zeros(nv)
+            drag_v[: self.n_twist] = terms.drag_x[twist_cols] / self.cos_sweep @ self.basis
+            record("induced_drag", q * terms.drag, q * terms.drag_x, q * drag_v)
         # Total streamwise twist (elastic + jig) [deg] and its smoothness penalty [N]: the rows of
         # twist_x are the derivatives of `geometry.streamwise_twist`.
         twist_x = np.zeros((n, nx))

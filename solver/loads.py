@@ -19,6 +19,7 @@ from solver.inputs import Wing
 from solver.results import Panels, Stations, Totals
 from solver.spar import TubeSpar
 from solver.system import CoupledSystem
+from solver.trefftz import far_field_drag
 
 __all__ = [
     "PanelLoads",
@@ -143,6 +144,8 @@ def equilibrium_loads(
     wing, layout, k = system.wing, system.layout, system.chordwise
     loads = panel_loads(system, x, q)
     lift, drag = lift_and_drag(loads, system.alpha)
+    if system.aerodynamics == "strip":  # two-dimensional sections: `solver.trefftz`
+        drag = far_field_drag(system, x, q)
     force, center = loads.force, loads.center
     heave, slope, phi = x[layout.heave].copy(), x[layout.slope].copy(), x[layout.twist].copy()
     twist = streamwise_twist(phi, slope, 0.0, wing.sweep)  # elastic: without the jig twist

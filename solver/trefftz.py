@@ -4,6 +4,11 @@ The near-field drag of the vortex lattice over free station twists runs away (a 
 stations costs it nothing); the Trefftz-plane drag of the planar wake, its trailing vortices at
 the stations, does not (the design study's closing sketch, made well-posed in
 `solver.optimize`).
+
+Strip theory's sections are two-dimensional: they see no downwash, so their near-field drag is
+zero by construction. Its induced drag is the Trefftz-plane drag of its lift distribution, the
+drag that lift distribution sheds into its wake (`far_field_drag`); `solver.loads` reports it as
+the induced drag under strip theory, and the design objectives use it.
 """
 
 from __future__ import annotations
@@ -15,7 +20,7 @@ import numpy as np
 from solver.results import Equilibrium
 from solver.system import CoupledSystem
 
-__all__ = ["strip_sum", "trefftz_drag", "trefftz_matrix"]
+__all__ = ["far_field_drag", "strip_sum", "trefftz_drag", "trefftz_matrix"]
 
 
 def trefftz_matrix(y: np.ndarray) -> np.ndarray:
@@ -35,11 +40,16 @@ def trefftz_matrix(y: np.ndarray) -> np.ndarray:
     return -2 * np.diag(width) @ kernel @ shed
 
 
+def far_field_drag(system: CoupledSystem, x: np.ndarray, q: float) -> float:
+    """[N] the Trefftz-plane induced drag of the state x (3N + M,) at dynamic pressure q [Pa]."""
+    strips = strip_sum(system) @ x[system.layout.circulation]
+    return float(q * strips @ trefftz_matrix(system.wing.y) @ strips)
+
+
 def trefftz_drag(equilibrium: Equilibrium) -> float:
     """[N] the far-field induced drag of an equilibrium (planar wake, `trefftz_matrix`)."""
     system = CoupledSystem.of(equilibrium.wing, equilibrium.flight.alpha, equilibrium.options)
-    strips = strip_sum(system) @ equilibrium.state[system.layout.circulation]
-    return float(equilibrium.dynamic_pressure * strips @ trefftz_matrix(system.wing.y) @ strips)
+    return far_field_drag(system, equilibrium.state, equilibrium.dynamic_pressure)
 
 
 def strip_sum(system: CoupledSystem) -> np.ndarray:
