@@ -10,7 +10,7 @@ equilibrium of the same wing and the same sweep without the wake's lag (quasi-st
 eigenvalue solve per airspeed, no p-k iteration).
 
 Cases:
-- natural modes alone (`solver.modes.natural_modes`)
+- natural modes alone (`solver.dynamics.modes.natural_modes`)
 - the sweep about the jig, strip theory (the issue's benchmark: target < 100 ms)
 - the same with the lattice's circulation
 - the same about the equilibrium at alpha 2 deg (a static sweep underneath)
@@ -34,10 +34,10 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import solver
-from solver.cache import model_for
-from solver.flutter import FlutterOptions, flutter
-from solver.layout import Layout
-from solver.modes import natural_modes
+from solver.dynamics.flutter import FlutterOptions, flutter
+from solver.dynamics.modes import natural_modes
+from solver.model.layout import Layout
+from solver.numerics.cache import model_for
 from tests.flutter_reference import SEA_LEVEL, goland_mass, goland_wing
 
 N = 30

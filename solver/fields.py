@@ -108,12 +108,12 @@ class Limits:
 #   text         a name: a string of 1 to `le` characters
 #   per_station  one number for every station, or N numbers, each within the limits
 #   positions    the stations: N increasing numbers from 0, or evenly spaced ones
-#                (`solver.inputs.StationSpacing`)
-#   airfoil      a camber line for every station or one per station (`solver.airfoil`)
-#   diameter     per_station, or a `solver.spar.ThicknessFraction`
+#                (`solver.inputs.wing.StationSpacing`)
+#   airfoil      a camber line for every station or one per station (`solver.inputs.airfoil`)
+#   diameter     per_station, or a `solver.inputs.spar.ThicknessFraction`
 #   nested       an input dataclass of its own (`given`)
 #   items        a list of `given` input dataclasses (at most one per station)
-#   velocities   airspeeds: a list, or `solver.inputs.VelocityRange`
+#   velocities   airspeeds: a list, or `solver.inputs.flight.VelocityRange`
 #   deformation  N numbers (a starting deformation), each within the limits
 FORMS = (
     "number",

@@ -16,34 +16,26 @@ from functools import cached_property
 from typing import Literal
 
 from solver import fields
-from solver.airspeed_sweep import airspeed_sweep
-from solver.controls import check_resolution
-from solver.design import DesignProblem
-from solver.effectiveness import control_sweep
+from solver.controls.effectiveness import control_sweep
+from solver.controls.roll import roll
+from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.flutter import FlutterOptions, flutter
-from solver.flutter_results import FlutterResult
-from solver.geometry import chordwise_nodes
-from solver.inputs import (
-    FLIGHT_RULE,
-    FlightCondition,
-    InitialGuess,
-    SolverOptions,
-    VelocityRange,
-    Wing,
-)
-from solver.optimize import optimize
-from solver.results import (
-    AirspeedSweep,
-    ControlSweep,
-    Equilibrium,
-    OptimalDesign,
-    Progress,
-    RollResponse,
-)
-from solver.roll import roll
-from solver.solve import solve
+from solver.inputs.control_surfaces import check_resolution
+from solver.inputs.design import DesignProblem
+from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
+from solver.inputs.options import InitialGuess, SolverOptions
+from solver.inputs.wing import Wing
+from solver.model.geometry import chordwise_nodes
+from solver.optimization.optimize import optimize
+from solver.results.controls import ControlSweep, RollResponse
+from solver.results.design import OptimalDesign
+from solver.results.equilibrium import Equilibrium
+from solver.results.flutter import FlutterResult
+from solver.results.quantities import Progress
+from solver.results.sweep import AirspeedSweep
+from solver.statics.airspeed_sweep import airspeed_sweep
+from solver.statics.solve import solve
 
 __all__ = [
     "OPERATIONS",

@@ -1,0 +1,3 @@
+"""What the solver returns, every type defined once with its units (`quantities`): the
+equilibrium and its findings, sweeps and divergence, designs, control and roll answers, flutter.
+"""

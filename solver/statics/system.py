@@ -1,0 +1,240 @@
+"""One wing at one angle of attack, as modelled: the compiled model bound to the wing's parameters.
+
+Everything above this module speaks of a `CoupledSystem`: evaluate r0, r1, J0, J1 at a state,
+the residual alone, the panel loads, and the scaled coordinates its continuation uses. Its
+`flow` says which flow the image half carries (`solver.model.vlm`): the symmetric flow by default,
+the antisymmetric one or the antisymmetric linearisation for roll (`solver.roll`), with a roll
+rate and the control direction of one surface.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
+from solver.inputs.options import SolverOptions
+from solver.inputs.wing import Wing
+from solver.model.geometry import chordwise_nodes
+from solver.model.layout import Aerodynamics, Layout
+from solver.numerics.cache import cached, model_for
+from solver.numerics.compiled import CompiledModel
+from solver.numerics.continuation import branch_scales
+from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
+
+__all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
+
+
+@dataclass(frozen=True)
+class Flow:
+    """What the model's image half carries, and what disturbs the flow (`solver.model.vlm`).
+
+    image: +1 the mirror image (symmetric flow), -1 the rotation about x (exactly
+        antisymmetric flow: the right half's camber then includes the ailerons'; valid for
+        sections symmetric in z at alpha 0, `solver.roll`).
+    image_jacobian: the weight of the image's own derivatives: equal to `image` for the exact
+        Jacobian; -1 with image +1 for the antisymmetric block at a symmetric state.
+    roll_rate: [rad/m] p / V, a steady roll rate about x (positive raises the right wing).
+    control: the direction of the model's control derivatives
+        (`solver.numerics.evaluation.ControlTerms`): one weight per control surface of the wing,
+        d(deflection_i)/d(parameter) (e_j for surface j alone; the ailerons' deflections [rad]
+        for their combined disturbance), or None.
+    """
+
+    image: float = 1.0
+    image_jacobian: float = 1.0
+    roll_rate: float = 0.0
+    control: tuple[float, ...] | None = None
+
+    @classmethod
+    def along(cls, index: int, count: int, **kwargs: float) -> Flow:
+        """The flow whose control direction is surface `index`'s alone, of `count`."""
+        return cls(control=tuple(1.0 if i == index else 0.0 for i in range(count)), **kwargs)
+
+    @property
+    def key(self) -> tuple[float, float, float, tuple[float, ...]]:
+        return (
+            self.image + 0.0,
+            self.image_jacobian + 0.0,
+            self.roll_rate + 0.0,
+            () if self.control is None else tuple(w + 0.0 for w in self.control),
+        )
+
+
+SYMMETRIC = Flow()
+
+
+@dataclass(frozen=True, eq=False)
+class CoupledSystem:
+    """The residual r(x; q) = r0(x) + q r1(x) of `wing` at `alpha` [deg], with `chordwise`
+    panels per strip, the torque about the heaved elastic axis if `deformed_axis`, and the
+    lattice's or strip theory's `aerodynamics` (`solver.model.layout`)."""
+
+    wing: Wing
+    alpha: float
+    chordwise: int = 1
+    deformed_axis: bool = False
+    aerodynamics: Aerodynamics = "lattice"
+    flow: Flow = SYMMETRIC
+
+    @classmethod
+    def of(
+        cls, wing: Wing, alpha: float, options: SolverOptions, flow: Flow = SYMMETRIC
+    ) -> CoupledSystem:
+        return cls(
+            wing,
+            alpha,
+            options.chordwise_panels,
+            options.torque_axis == "deformed",
+            options.aerodynamics,
+            flow,
+        )
+
+    def with_flow(self, flow: Flow) -> CoupledSystem:
+        """The same wing and alpha with another `flow`."""
+        return dataclasses.replace(self, flow=flow)
+
+    def at_alpha(self, alpha: float) -> CoupledSystem:
+        """The same wing and model at `alpha` [deg], sharing what does not depend on it (the
+        model and every other parameter: a trimmed solve changes alpha at every iteration)."""
+        other = dataclasses.replace(self, alpha=alpha)
+        for name in ("parameters", "flow_parameters"):
+            if name == "parameters" or name in self.__dict__:
+                parameters = getattr(self, name).copy()
+                parameters[self.layout.alpha_index] = alpha
+                other.__dict__[name] = parameters
+        other.__dict__["layout"] = self.layout
+        for name in ("model", "flow_model"):
+            if name in self.__dict__:
+                other.__dict__[name] = self.__dict__[name]
+        return other
+
+    @cached_property
+    def layout(self) -> Layout:
+        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics)
+
+    @cached_property
+    def model(self) -> CompiledModel:
+        """The mesh's model: the symmetric one for the symmetric flow, else its flow model."""
+        # Looked up once per system (a system lives for one request): the model swaps compiled
+        # code in by itself, and `model_for` picks up a library another process compiled.
+        return self.flow_model if self.flow != SYMMETRIC else model_for(self.layout)
+
+    @cached_property
+    def flow_model(self) -> CompiledModel:
+        """The mesh's flow model (`solver.numerics.compiled`), whatever the flow."""
+        return model_for(self.layout, flow=True)
+
+    @cached_property
+    def parameters(self) -> np.ndarray:
+        """(n_parameters,) the parameter vector of `model`, read-only. Kept in the solver's
+        cache: a request builds a new system, and assembling the vector costs ~0.05 ms at N =
+        30."""
+        if self.flow != SYMMETRIC:
+            return self.flow_parameters
+        return cached(("parameters", *self.key), self._assemble_parameters, _nbytes)
+
+    @cached_property
+    def flow_parameters(self) -> np.ndarray:
+        """The flow model's parameter vector (`solver.model.layout`), read-only."""
+        return cached(("flow_parameters", *self.key), self._assemble_flow_parameters, _nbytes)
+
+    def _assemble_parameters(self) -> np.ndarray:
+        camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
+        parameters = self.layout.parameters(
+            self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
+        )
+        parameters.setflags(write=False)
+        return parameters
+
+    def _assemble_flow_parameters(self) -> np.ndarray:
+        wing, flow, nodes = self.wing, self.flow, chordwise_nodes(self.chordwise)
+        camber = wing.camber_at(nodes)
+        if flow.image < 0:  # the right half as it is: its ailerons deflected too
+            camber = camber + antisymmetric_camber(wing.control_surfaces, wing.y, nodes)
+        control = None
+        if flow.control is not None:
+            surfaces = wing.control_surfaces
+            if len(flow.control) != len(surfaces):
+                raise ValueError("the flow's control direction needs one weight per surface")
+            control = sum(
+                (
+                    weight * camber_rate(surfaces, i, wing.y, nodes)
+                    for i, weight in enumerate(flow.control)
+                    if weight != 0.0
+                ),
+                np.zeros((wing.n_stations, self.chordwise + 1)),
+            )
+        parameters = np.concatenate(
+            [
+                self.layout.parameters(
+                    wing.arrays(), camber, self.alpha, wing.sweep, self.deformed_axis
+                ),
+                self.layout.flow_parameters(
+                    flow.image, flow.image_jacobian, flow.roll_rate, control
+                ),
+            ]
+        )
+        parameters.setflags(write=False)
+        return parameters
+
+    @property
+    def model_key(self) -> tuple:  # type: ignore[type-arg]
+        """The identity of the wing as modelled, whatever the alpha: what the wing at rest and
+        its linear divergence are cached by (the flow's only when it is not the symmetric)."""
+        key = (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)
+        return key if self.flow == SYMMETRIC else (*key, self.flow.key)
+
+    @property
+    def key(self) -> tuple:  # type: ignore[type-arg]
+        """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike);
+        the flow's only when it is not the symmetric one."""
+        key = (
+            self.wing.key,
+            self.alpha + 0.0,
+            self.chordwise,
+            self.deformed_axis,
+            self.aerodynamics,
+        )
+        return key if self.flow == SYMMETRIC else (*key, self.flow.key)
+
+    def evaluate(self, x: np.ndarray) -> Evaluation:
+        return self.model.evaluate(x, self.parameters)
+
+    def evaluate_with_alpha(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
+        return self.model.evaluate_with_alpha(x, self.parameters)
+
+    def residual(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.model.residual(x, self.parameters)
+
+    def residual_with_lift(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) and the lift of both halves per unit q [m^2] at x."""
+        return self.model.residual_with_lift(x, self.parameters)
+
+    def evaluate_with_controls(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
+        """The flow model's evaluation at x, with what control surfaces and roll add."""
+        return self.flow_model.evaluate_with_controls(x, self.flow_parameters)
+
+    def residual_with_roll(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(r0, r1) and the rolling moment per unit q [m^3] at x (`ControlTerms.roll`)."""
+        return self.flow_model.residual_with_roll(x, self.flow_parameters)
+
+    def flow_panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
+        """The flow model's `panel_loads` (with the stations' leading edges)."""
+        return self.flow_model.panel_loads(x, self.flow_parameters)
+
+    def panel_loads(self, x: np.ndarray) -> list[np.ndarray]:
+        """[force (3, M) per unit q, torque (1, M) per unit q, center (3, M), quarter_chord
+        (3, N), leading_edge (3, N)]."""
+        return self.model.panel_loads(x, self.parameters)
+
+    def scale(self, q_scale: float) -> np.ndarray:
+        """(n + 1,) scaled coordinates of states and q, with q measured in q_scale [Pa]."""
+        return branch_scales(self.layout, self.wing.semispan, self.wing.mean_chord, q_scale)
+
+
+def _nbytes(array: np.ndarray) -> int:
+    return array.nbytes

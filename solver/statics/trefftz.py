@@ -1,0 +1,57 @@
+"""Far-field (Trefftz-plane) induced drag of the planar wake: what a zigzag twist cannot lower.
+
+The near-field drag of the vortex lattice over free station twists runs away (a zigzag between
+stations costs it nothing); the Trefftz-plane drag of the planar wake, its trailing vortices at
+the stations, does not (the design study's closing sketch, made well-posed in
+`solver.optimize`).
+
+Strip theory's sections are two-dimensional: they see no downwash, so their near-field drag is
+zero by construction. Its induced drag is the Trefftz-plane drag of its lift distribution, the
+drag that lift distribution sheds into its wake (`far_field_drag`); `solver.statics.loads` reports
+it as the induced drag under strip theory, and the design objectives use it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solver.results.equilibrium import Equilibrium
+from solver.statics.system import CoupledSystem
+
+__all__ = ["far_field_drag", "strip_sum", "trefftz_drag", "trefftz_matrix"]
+
+
+def trefftz_matrix(y: np.ndarray) -> np.ndarray:
+    """(N-1, N-1) [-] A with D_T / q = G^T A G for strip circulations G (N-1,) [m] per unit
+    airspeed (both halves): the Trefftz-plane drag of the planar wake, its trailing vortices at
+    the stations' y (z = 0), the downwash taken at the strips' middles."""
+    middle, width = (y[1:] + y[:-1]) / 2, np.diff(y)
+    n = y.size
+    shed = np.zeros((n, n - 1))  # trailing strengths at the stations: inboard minus outboard
+    shed[np.arange(1, n), np.arange(n - 1)] = 1.0
+    shed[np.arange(1, n - 1), np.arange(1, n - 1)] = -1.0
+    with np.errstate(divide="ignore"):
+        kernel = (1 / (middle[:, None] - y[None, :]) - 1 / (middle[:, None] + y[None, :])) / (
+            2 * math.pi
+        )
+    kernel[:, 0] = 0.0  # the root's trailing vortex and its mirror image cancel
+    return -2 * np.diag(width) @ kernel @ shed
+
+
+def far_field_drag(system: CoupledSystem, x: np.ndarray, q: float) -> float:
+    """[N] the Trefftz-plane induced drag of the state x (3N + M,) at dynamic pressure q [Pa]."""
+    strips = strip_sum(system) @ x[system.layout.circulation]
+    return float(q * strips @ trefftz_matrix(system.wing.y) @ strips)
+
+
+def trefftz_drag(equilibrium: Equilibrium) -> float:
+    """[N] the far-field induced drag of an equilibrium (planar wake, `trefftz_matrix`)."""
+    system = CoupledSystem.of(equilibrium.wing, equilibrium.flight.alpha, equilibrium.options)
+    return far_field_drag(system, equilibrium.state, equilibrium.dynamic_pressure)
+
+
+def strip_sum(system: CoupledSystem) -> np.ndarray:
+    """(N-1, M) panels to strips."""
+    return np.kron(np.eye(system.layout.n_strips), np.ones((1, system.chordwise)))
