@@ -17,12 +17,13 @@ from fastapi.openapi.utils import get_openapi
 from fastapi.routing import APIRoute
 from fastapi.staticfiles import StaticFiles
 
+import solver
 from app import __version__, security
 from app.execution.pool import WorkerPool
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import controls, flutter, health, optimize, page, solve, sweep
+from app.routes import health, operations, page
 from app.routes import jobs as job_routes
 from app.service import Service
 from app.settings import Settings, get_settings
@@ -156,13 +157,7 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
             description=app.description,
             routes=app.routes,
             tags=[
-                {"name": "equilibrium", "description": "Solve for aeroelastic equilibria."},
-                {"name": "design", "description": "Optimise a wing's jig twist and spar."},
-                {"name": "dynamics", "description": "Vibration modes and flutter."},
-                {
-                    "name": "controls",
-                    "description": "Flaps and ailerons: roll, control effectiveness, reversal.",
-                },
+                *({"name": tag, "description": text} for tag, text in solver.TAGS.items()),
                 {"name": "jobs", "description": "Long work in the background, and batches."},
                 {"name": "operations", "description": "Liveness, readiness and metrics."},
             ],
@@ -215,15 +210,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_handlers(app)
     # Each operation answers 202 with a job past its wait (app.routes.answers), or at once
     # with Prefer: respond-async.
-    operations = (
-        ("solve", solve.router),
-        ("sweep", sweep.router),
-        ("optimize", optimize.router),
-        ("flutter", flutter.router),
-        ("roll", controls.roll_router),
-        ("controls", controls.effectiveness_router),
-    )
-    for name, router in operations:
+    for name, router in operations.routers().items():
         at_once = Depends(job_routes.respond_async(name))
         app.include_router(router, dependencies=[at_once], responses=job_routes.ACCEPTED)
     for module in (health, page):

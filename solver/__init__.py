@@ -58,15 +58,11 @@ from solver.inputs.wing import MIN_STATIONS, StationSpacing, Wing
 from solver.model.layout import Layout
 from solver.numerics.cache import CacheInfo, cache_info, clear_caches
 from solver.numerics.warm import is_compiled, warm_up
-from solver.operations import (
-    OPERATIONS,
-    ControlsInput,
-    FlutterInput,
-    OptimizeInput,
-    RollInput,
-    SolveInput,
-    SweepInput,
-)
+from solver.operations.controls import ControlsInput, RollInput
+from solver.operations.design import OptimizeInput
+from solver.operations.dynamics import FlutterInput
+from solver.operations.statics import SolveInput, SweepInput
+from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation
 from solver.optimization.optimize import optimize
 from solver.results.controls import (
     ControlEffectiveness,
@@ -128,6 +124,9 @@ __all__ = [
     "MAX_CAMBER",
     "MIN_STATIONS",
     "OPERATIONS",
+    "OPERATION_TABLE",
+    "Operation",
+    "TAGS",
     "airspeed_sweep",
     "AirspeedPoint",
     "AirspeedSweep",

@@ -54,7 +54,9 @@ SOLVER_LAYERS: list[list[str]] = [
     ["dynamics.flutter"],
     ["controls.roll"],
     ["controls.effectiveness"],
-    ["operations", "deprecated"],
+    ["operations.common"],
+    ["operations.statics", "operations.design", "operations.dynamics", "operations.controls"],
+    ["operations.table", "deprecated"],
     ["__init__"],
 ]
 SUBPACKAGES = sorted(

@@ -26,7 +26,7 @@ from typing import Any
 
 from app.jobs import store
 from app.jobs.models import FINISHED_STATES, JOB_STATES
-from app.jobs.operations import OPERATIONS, Operation
+from app.jobs.operations import JOB_KINDS, JobKind
 from app.jobs.signals import on_shutdown_signals
 from app.jobs.store import JobRow, JobStore, OwnerLock
 from app.metrics import Metrics
@@ -71,7 +71,7 @@ class LiveJob:
     """A queued or running job, in memory (`row()` is its database row)."""
 
     id: str
-    operation: Operation
+    operation: JobKind
     request: Any  # the validated request model; None once finished
     created: float  # [s since the epoch]
     total: int
@@ -149,7 +149,7 @@ class JobManager:
         settings: Settings,
         service: Service,
         metrics: Metrics,
-        operations: Mapping[str, Operation] = OPERATIONS,
+        operations: Mapping[str, JobKind] = JOB_KINDS,
     ) -> None:
         self.settings = settings
         self.service = service

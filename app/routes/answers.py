@@ -16,7 +16,7 @@ from pydantic import BaseModel
 from app.jobs.manager import JobManager
 from app.jobs.views import job_view
 from app.security import owner
-from app.service import OPERATIONS, Service
+from app.service import Service, budget_of, parts_of
 
 __all__ = ["answer", "preferred_wait"]
 
@@ -49,7 +49,7 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
     """The answer of `body` to `operation`, or a 202 for the job it became past the wait."""
     task = service.task(body)  # an invalid request is its 422 here, never a job
     settings = service.settings
-    budget: float = getattr(settings, OPERATIONS[operation].budget)
+    budget = budget_of(operation, settings)
     wait = preferred_wait(request.headers.get("prefer"))
     wait = settings.sync_wait if wait is None else min(wait, budget)
     reports = _Relay()
@@ -61,7 +61,7 @@ async def answer(operation: str, body: BaseModel, request: Request, service: Ser
         # applied again here (tests/app/schemas/test_responses.py holds them to it).
         return Response(running.result(), media_type="application/json")
     manager: JobManager = request.app.state.jobs
-    total = len(task.airspeeds) if hasattr(task, "airspeeds") else 1
+    total = parts_of(operation, task)
     job = manager.adopt(operation, running, total, principal=owner(request))
     reports.to = lambda done, total: manager.progressed(job, done)
     view = job_view(job.row(), manager.operations)

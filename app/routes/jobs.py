@@ -19,7 +19,7 @@ from pydantic import TypeAdapter, ValidationError
 from app.jobs import streams
 from app.jobs.manager import JobManager
 from app.jobs.models import STUDY_BATCH, JobList, JobStatus
-from app.jobs.operations import Operation, submission_type
+from app.jobs.operations import JobKind, submission_type
 from app.jobs.views import job_view
 from app.problems import FieldError, Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
@@ -123,7 +123,7 @@ def _parse_cursor(cursor: str) -> tuple[float, str]:
 # --------------------------------------------------------------------------- the router
 
 
-def make_router(operations: Mapping[str, Operation]) -> APIRouter:
+def make_router(operations: Mapping[str, JobKind]) -> APIRouter:
     """The jobs routes; POST /jobs takes any operation of `operations`."""
     submission = submission_type(operations)
     router = APIRouter(tags=["jobs"])
@@ -162,7 +162,7 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
     return router
 
 
-def _examples(operations: Mapping[str, Operation]) -> dict[str, Any]:
+def _examples(operations: Mapping[str, JobKind]) -> dict[str, Any]:
     found = {
         "batch": ("Three speeds of the study's wing as one batch", STUDY_BATCH),
         "solve": ("The study's wing at 10 m/s", SOLVE_EXAMPLES["study"]["value"]),

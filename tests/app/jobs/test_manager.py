@@ -22,7 +22,7 @@ import pytest
 
 from app.jobs import store
 from app.jobs.manager import JobManager, LiveJob
-from app.jobs.operations import JobContext, Operation
+from app.jobs.operations import JobContext, JobKind
 from app.metrics import Metrics
 from app.problems import FieldError, Problem
 from app.settings import Settings
@@ -70,7 +70,7 @@ async def _run_items(context: JobContext, request: Any) -> None:
 
 
 # Requests are plain values here: the manager never validates them (the routes do).
-ECHO = Operation(
+ECHO = JobKind(
     name="echo",
     summary="an echo through the service",
     request_model=object,  # type: ignore[arg-type]
@@ -80,7 +80,7 @@ ECHO = Operation(
     run=_run_echo,
     result=json.dumps,
 )
-ITEMS = Operation(
+ITEMS = JobKind(
     name="items",
     summary="items answered in place",
     request_model=object,  # type: ignore[arg-type]
@@ -90,7 +90,7 @@ ITEMS = Operation(
     run=_run_items,
     has_items=True,
 )
-OPERATIONS = {"echo": ECHO, "items": ITEMS}
+JOB_KINDS = {"echo": ECHO, "items": ITEMS}
 
 
 def _settings(tmp_path: Path, **changes: Any) -> Settings:
@@ -100,7 +100,7 @@ def _settings(tmp_path: Path, **changes: Any) -> Settings:
 
 @contextlib.asynccontextmanager
 async def _started(settings: Settings, service: FakeService) -> AsyncIterator[JobManager]:
-    manager = JobManager(settings, service, Metrics(), OPERATIONS)  # type: ignore[arg-type]
+    manager = JobManager(settings, service, Metrics(), JOB_KINDS)  # type: ignore[arg-type]
     await manager.start()
     try:
         yield manager

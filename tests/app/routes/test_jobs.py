@@ -522,13 +522,13 @@ def test_a_new_operation_is_one_registry_entry() -> None:
     (here one that takes a /solve body), one that is not there is an error on `operation`."""
     from pydantic import TypeAdapter, ValidationError
 
-    from app.jobs.operations import OPERATIONS, Operation, submission_type
+    from app.jobs.operations import JOB_KINDS, JobKind, submission_type
     from app.schemas import SolveRequest
 
     async def run(context: Any, request: SolveRequest) -> str:
         return "{}"
 
-    echo = Operation(
+    echo = JobKind(
         name="echo",
         summary="an echo",
         request_model=SolveRequest,
@@ -537,7 +537,7 @@ def test_a_new_operation_is_one_registry_entry() -> None:
         check=lambda request, settings: None,
         run=run,
     )
-    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(OPERATIONS | {"echo": echo}))
+    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(JOB_KINDS | {"echo": echo}))
     body = adapter.validate_python({"operation": "echo", "request": study.solve_request(10.0)})
     assert body.operation == "echo" and body.request.flight.velocity == 10.0
     with pytest.raises(ValidationError) as raised:
