@@ -195,6 +195,16 @@ class Wing:
         form="nested",
         given=SparDesign,
         default=None,
+        example={
+            "outer_diameter": 0.08,
+            "wall_thickness": 0.002,
+            "material": {
+                "youngs_modulus": 70e9,
+                "shear_modulus": 27e9,
+                "density": 1600.0,
+                "yield_stress": 600e6,
+            },
+        },
     )
     sweep: float = parameter(
         "deg",
@@ -204,6 +214,7 @@ class Wing:
         lt=60.0,
         why="the streamwise sections' strips stay sensible",
         default=0.0,
+        example=15.0,
     )
     jig_twist: np.ndarray = parameter(
         "deg",
@@ -213,6 +224,7 @@ class Wing:
         why="a built-in twist the lattice can mean",
         per_station=True,
         default=0.0,
+        example=2.0,
     )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
@@ -221,6 +233,7 @@ class Wing:
         "sections). With one chordwise panel only the camber at x = 0 and 1 matters",
         form="airfoil",
         default=(),
+        example="naca2412",
     )
     cl_max: np.ndarray | None = parameter(
         "-",
@@ -241,6 +254,10 @@ class Wing:
         form="items",
         given=ControlSurface,
         default=(),
+        example=[
+            {"name": "flap", "start": 0.0, "end": 0.45, "hinge": 0.5, "deflection": 5.0},
+            {"name": "aileron", "start": 0.55, "end": 0.95, "deflection": 5.0, "kind": "aileron"},
+        ],
     )
     mass: MassModel | None = parameter(
         "",
@@ -249,6 +266,7 @@ class Wing:
         form="nested",
         given=MassModel,
         default=None,
+        example={"mass_per_length": 3.0, "center_of_gravity": 0.45, "inertia_per_length": 0.1},
     )
 
     @classmethod

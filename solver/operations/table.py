@@ -54,7 +54,8 @@ class Operation:
     422 responses' description); budget: which time budget it runs in (the service's
     FLEXWING_<BUDGET>_TIMEOUT); answered: what a success is counted as; parts: the input's
     attribute whose length its progress counts (None: one part); answers: the typed domain
-    answers (solver errors) it can give instead of a result.
+    answers (solver errors) it can give instead of a result; requires: the optional parts of
+    its input it cannot answer without (dotted paths: "wing.mass").
     """
 
     name: str
@@ -67,6 +68,7 @@ class Operation:
     answered: str
     parts: str | None = None
     answers: tuple[type[SolverError], ...] = (NoEquilibrium, ConvergenceError)
+    requires: tuple[str, ...] = ()
 
     @property
     def result(self) -> type:
@@ -168,6 +170,7 @@ damped mode.""",
         answered="analysed",
         parts="airspeeds",
         answers=(ConvergenceError,),
+        requires=("wing.mass",),
     ),
     Operation(
         name="roll",
@@ -186,11 +189,13 @@ twist, no flap deflected) the exact antisymmetric equilibrium; elsewhere the sym
 equilibrium (flaps included; trimmed, the one carrying the lift) with the antisymmetric
 disturbance linearised about it, as Nastran's antisymmetric subcase does about the jig.""",
         refusals="a wing without control surfaces, `method` antisymmetric where the response is "
-        "not exactly antisymmetric and `free_roll` of a wing without roll damping are invalid "
-        "input; no equilibrium (past the symmetric or the antisymmetric divergence: "
-        "/problems/no-equilibrium) or no convergence (/problems/not-converged).",
+        "not exactly antisymmetric, `free_roll` of a wing without roll damping and strip "
+        "aerodynamics (roll is the lattice's) are invalid input; no equilibrium (past the "
+        "symmetric or the antisymmetric divergence: /problems/no-equilibrium) or no "
+        "convergence (/problems/not-converged).",
         budget="solve",
         answered="rolled",
+        requires=("wing.control_surfaces",),
     ),
     Operation(
         name="controls",
@@ -204,11 +209,13 @@ as the eigenvalue of the exact Jacobians at the unloaded jig (Nastran SOL 144's 
 again where the sweep's derivative changes sign, the divergence of its problem (symmetric for a
 flap, antisymmetric for an aileron) and which comes first. A speed without an equilibrium is
 answered in its point (`status` no_equilibrium).""",
-        refusals="a wing without control surfaces is invalid input. " + _PAST_THE_FOLD,
+        refusals="a wing without control surfaces and strip aerodynamics (the control "
+        "derivatives are the lattice's) are invalid input. " + _PAST_THE_FOLD,
         budget="sweep",
         answered="completed",
         parts="airspeeds",
         answers=(),
+        requires=("wing.control_surfaces",),
     ),
 )
 

@@ -15,6 +15,7 @@ from functools import cached_property
 
 import numpy as np
 
+from solver.errors import InvalidInput
 from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
@@ -125,7 +126,14 @@ class CoupledSystem:
 
     @cached_property
     def flow_model(self) -> CompiledModel:
-        """The mesh's flow model (`solver.numerics.compiled`), whatever the flow."""
+        """The mesh's flow model (`solver.numerics.compiled`), whatever the flow: the
+        lattice's (control derivatives, antisymmetric flow, roll); strip theory has none."""
+        if self.aerodynamics == "strip":
+            raise InvalidInput(
+                "options.aerodynamics",
+                "control surfaces' derivatives, roll and the antisymmetric flow are the "
+                "lattice's: strip theory answers the symmetric statics and flutter only",
+            )
         return model_for(self.layout, flow=True)
 
     @cached_property

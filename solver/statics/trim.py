@@ -37,6 +37,7 @@ from typing import Literal
 
 import numpy as np
 
+from solver import fields
 from solver.errors import (
     ConvergenceError,
     InvalidInput,
@@ -341,6 +342,15 @@ def _answer(
     return dataclasses.replace(equilibrium, totals=totals)
 
 
+class _PastTheAirspeeds(Exception):
+    """The trimmed divergence limit's search reached an airspeed [m/s] no flight condition
+    takes."""
+
+    def __init__(self, velocity: float) -> None:
+        super().__init__(velocity)
+        self.velocity = velocity
+
+
 def _trimmed(velocity: float, lift: float, density: float) -> FlightCondition:
     return FlightCondition(velocity, density=density, lift=lift)
 
@@ -390,6 +400,7 @@ def _modelled(options: SolverOptions) -> tuple[object, ...]:
     return (
         options.chordwise_panels,
         options.torque_axis,
+        options.aerodynamics,
         options.tolerance,
         options.max_iterations,
     )
@@ -413,10 +424,14 @@ def _trimmed_divergence_limit(
     if q_linear is None:
         return Fold(None, None, None, None, 0.0, "the wing cannot diverge", kind=kind)
     evaluations = 0
+    fastest = fields.spec_of(FlightCondition, "velocity").limits.le
+    assert fastest is not None
 
     def gap(q: float) -> tuple[float, _TrimmedPoint]:
         nonlocal evaluations
         velocity = FlightCondition.velocity_for(q, density)
+        if velocity > fastest:
+            raise _PastTheAirspeeds(velocity)
         with numerical_failures_as(velocity):
             point = _trimmed_point(wing, _trimmed(velocity, lift, density), options)
             local = point.local_divergence_pressure()
@@ -453,6 +468,12 @@ def _trimmed_divergence_limit(
             f"the trimmed branch could not be traced: {error}",
             kind=kind,
         )
+    except _PastTheAirspeeds as past:
+        reason = (
+            f"the limit lies past {fastest:g} m/s, the fastest airspeed the model takes (its "
+            f"search reached {past.velocity:.4g} m/s)"
+        )
+        return Fold(None, None, None, None, fastest, reason, kind=kind)
     velocity = FlightCondition.velocity_for(q1, density)
     if not (math.isfinite(g1) and abs(q1 - q0) <= 1e-6 * q1):
         return Fold(None, None, None, None, velocity, "the secant did not settle", kind=kind)

@@ -6,9 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import solver
 from solver import SolverOptions
 from solver.statics.system import CoupledSystem
-from tests.study import study_wing
+from tests.study import study_arrays, study_wing
 
 
 def test_equal_wings_and_alphas_have_one_key_whatever_the_sign_of_zero():
@@ -49,3 +50,24 @@ def test_the_residual_alone_is_the_evaluations_residual():
     # in their own orders: equal to round-off, not to the bit.
     np.testing.assert_allclose(r0, evaluation.r0, rtol=1e-13, atol=1e-15)
     np.testing.assert_allclose(r1, evaluation.r1, rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "ask",
+    [
+        lambda wing, strip: solver.roll(wing, solver.FlightCondition(12.0, 5.0), strip),
+        lambda wing, strip: solver.control_sweep(wing, [12.0], 5.0, 1.225, strip),
+    ],
+    ids=["roll", "control_sweep"],
+)
+def test_strip_theory_has_no_flow_model_and_says_so_naming_the_option(ask) -> None:
+    """Found by the operation x option matrix: /roll and /controls under strip theory were a
+    500 (the residual's builder refused the flow model with a ValueError). Control
+    derivatives, roll and the antisymmetric flow are the lattice's: the refusal names
+    `options.aerodynamics`."""
+    aileron = {"name": "aileron", "start": 0.55, "end": 0.95, "hinge": 0.5, "kind": "aileron"}
+    wing = solver.Wing.create(**study_arrays(), control_surfaces=[aileron | {"deflection": 5.0}])
+    strip = solver.SolverOptions(aerodynamics="strip", chordwise_panels=2)
+    with pytest.raises(solver.InvalidInput) as raised:
+        ask(wing, strip)
+    assert raised.value.field == "options.aerodynamics"

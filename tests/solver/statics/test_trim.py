@@ -269,3 +269,35 @@ def test_a_trim_condition_rejects_what_cannot_be_flown(fields, field):
     with pytest.raises(solver.InvalidInput) as raised:
         solver.FlightCondition(**fields)
     assert raised.value.field == field
+
+
+def test_a_trimmed_limit_past_the_fastest_airspeed_is_no_limit_with_the_reason():
+    """Found by the operation x option matrix: a wing stiff enough that its trimmed limit lies
+    past 1000 m/s (the fastest airspeed a flight condition takes) was a 422 naming a
+    `velocity` the request never had; it is a limit not found, as far as the model reaches."""
+    wing = study_wing()
+    stiff = solver.Wing.create(wing.y, wing.chord, 0.4, 1e9, 1e9)
+    limit = solver.trimmed_divergence_limit(stiff, STUDY_WEIGHT, RHO)
+    assert limit.velocity is None and limit.kind == "trimmed_stability_limit"
+    assert limit.reason is not None and "1000 m/s" in limit.reason
+    assert limit.searched_to_velocity == 1000.0
+    answered = solver.solve(
+        stiff,
+        solver.FlightCondition(12.0, lift=STUDY_WEIGHT),
+        options=solver.SolverOptions(find_fold=True),
+    )
+    assert answered.fold is not None and answered.fold.velocity is None
+
+
+def test_the_trimmed_limit_of_strip_theory_is_its_own_whatever_was_asked_before():
+    """The limit is kept in the solver's cache: strip theory's and the lattice's are two
+    answers, each the same asked first or after the other (its key holds the aerodynamics)."""
+    strip = solver.SolverOptions(aerodynamics="strip")
+    solver.clear_caches()
+    strip_first = solver.trimmed_divergence_limit(study_wing(), STUDY_WEIGHT, RHO, strip)
+    lattice = solver.trimmed_divergence_limit(study_wing(), STUDY_WEIGHT, RHO)
+    strip_after = solver.trimmed_divergence_limit(study_wing(), STUDY_WEIGHT, RHO, strip)
+    assert strip_first.velocity is not None and lattice.velocity is not None
+    assert strip_after.velocity == strip_first.velocity
+    # Strip theory has no tip loss: it diverges well before the lattice (measured ~15 %).
+    assert strip_first.velocity < 0.95 * lattice.velocity
