@@ -25,6 +25,7 @@ from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
 from app.routes import health, operations, page
 from app.routes import jobs as job_routes
+from app.routes.answers import Arrival
 from app.service import Service
 from app.settings import Settings, get_settings
 
@@ -224,6 +225,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     security.install_access(app, settings, metrics)  # API keys and rate limits, inside the metrics
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     security.install_headers(app, settings)  # CORS and security headers on every response
+    app.add_middleware(Arrival)  # outermost: a synchronous wait counts from the arrival
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app
 

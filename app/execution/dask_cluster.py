@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import hashlib
 import logging
 import secrets
 from collections.abc import Callable
@@ -225,14 +226,25 @@ class DaskWorkers:
     # --------------------------------------------------------------------------- running
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
-        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
+        """(`progress` is not reported from here: a task's progress arrives with its end.) A
+        task with an `affinity` prefers one worker, the same for the same wing while the
+        cluster keeps its workers (rendezvous hashing), which the scheduler may pass over."""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._client is None:
                 raise NotReady("the service is shutting down")
-            future = self._client.submit(fn, task, pure=False)
+            preferred = _rendezvous(affinity, [a for a, w in self._workers.items() if w.warm])
+            placement: dict[str, Any] = {}
+            if preferred is not None:
+                placement = {"workers": [preferred], "allow_other_workers": True}
+            future = self._client.submit(fn, task, pure=False, **placement)
             return await self._outcome(future, timeout)
 
     async def _outcome(self, future: Any, timeout: float) -> Any:
@@ -252,6 +264,14 @@ class DaskWorkers:
             if key in keys:
                 self.metrics.worker_restarts.labels("timeout").inc()
                 await self._client.restart_workers([address], raise_for_error=False)
+
+
+def _rendezvous(affinity: bytes | None, addresses: list[str]) -> str | None:
+    """The worker a wing prefers: the address with the highest hash of (wing, address), so a
+    worker that joins or leaves moves only its own share of the wings."""
+    if affinity is None or not addresses:
+        return None
+    return max(addresses, key=lambda a: hashlib.blake2b(affinity + a.encode()).digest())
 
 
 def _log_failure(task: asyncio.Future[Any]) -> None:

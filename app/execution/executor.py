@@ -112,9 +112,15 @@ class ExecutorWorkers:
         self._detail = "closed"
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
-        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
+        """(`progress` is not reported from here: a task's progress arrives with its end; an
+        executor chooses its own worker, whatever the `affinity`.)"""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._executor is None:
