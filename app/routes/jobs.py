@@ -42,8 +42,24 @@ Principal = Annotated[str, Depends(principal)]
 _LOCATION: dict[str, Any] = {
     "Location": {"description": "/jobs/{id}", "schema": {"type": "string"}}
 }
+# OpenAPI links from an accepted job to what can be asked of it: clients, generators and
+# stateful fuzzers follow them from the 202's `id`.
+_JOB_LINKS: dict[str, Any] = {
+    name: {
+        "operationId": operation,
+        "parameters": {"job_id": "$response.body#/id"},
+        "description": description,
+    }
+    for name, operation, description in (
+        ("GetJob", "get_job", "The job's state, progress, and result or problem."),
+        ("CancelJob", "cancel_job", "Cancel the job."),
+        ("JobEvents", "job_events", "The job's progress as Server-Sent Events."),
+        ("JobItems", "job_items", "A batch job's answered items as NDJSON."),
+    )
+}
 ACCEPTED: dict[int | str, dict[str, Any]] = {
     202: {
+        "links": _JOB_LINKS,
         "model": JobStatus,
         "description": (
             "Accepted as a job: with Prefer: respond-async, or when the answer was not ready "
@@ -72,7 +88,7 @@ _CANCEL_RESPONSES: Responses = {
     409: _problem("The job runs in another service process (/problems/job-conflict)."),
 }
 _SUBMIT_RESPONSES: Responses = {
-    202: {"headers": _LOCATION},
+    202: {"headers": _LOCATION, "links": _JOB_LINKS},
     413: _problem("Body larger than FLEXWING_MAX_JOB_BODY_BYTES (/problems/body-too-large)."),
     422: _problem(
         "Invalid body (/problems/invalid-input): `errors` names each bad field from the body's "

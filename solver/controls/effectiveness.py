@@ -47,7 +47,7 @@ from solver.errors import (
     SolverError,
     numerical_failures_as,
 )
-from solver.inputs.flight import FlightCondition, OperatingPoint
+from solver.inputs.flight import FlightCondition, OperatingPoint, dynamic_pressure
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.model.geometry import DEG
@@ -447,7 +447,7 @@ def _crossing(
     divergence pole is taken out, E (1 - q / q_D), which is exactly linear for one torsion mode
     (the typical section's (1 - q/q_R) / (1 - q/q_D)); the first change of sign in q."""
     samples = sorted(
-        (0.5 * density * p.velocity**2, p.controls[index].effectiveness)
+        (dynamic_pressure(density, p.velocity), p.controls[index].effectiveness)
         for p in points
         if p.controls and p.controls[index].effectiveness is not None
     )

@@ -12,7 +12,7 @@ from typing import Any, ClassVar, Literal
 from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.inputs.flight import ISA_SEA_LEVEL_DENSITY, FlightCondition
+from solver.inputs.flight import ISA_SEA_LEVEL_DENSITY, FlightCondition, dynamic_pressure
 
 __all__ = [
     "DESIGN_FLIGHT_RULE",
@@ -105,8 +105,9 @@ class DesignCondition:
 
     @property
     def dynamic_pressure(self) -> float:
-        """[Pa]"""
-        return 0.5 * self.density * self.velocity**2
+        """q = rho V^2 / 2 [Pa], as the equilibrium of the design is solved at (the two
+        rounded differently in the last bit before)."""
+        return dynamic_pressure(self.density, self.velocity)
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ __all__ = [
     "FlightCondition",
     "OperatingPoint",
     "VelocityRange",
+    "dynamic_pressure",
     "velocity_for",
 ]
 ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
@@ -30,6 +31,17 @@ FLIGHT_RULE = (
     "give exactly one of alpha (at a given angle of attack), lift, or weight with an optional "
     "load_factor (trimmed: the angle of attack is solved for)"
 )
+
+
+def dynamic_pressure(density: float, velocity: float) -> float:
+    """q = rho V^2 / 2 [Pa] of an airspeed V [m/s] in air of density rho [kg/m^3] (every
+    operation's, written once; inf past the float range, not OverflowError)."""
+    return 0.5 * density * velocity * velocity
+
+
+def velocity_for(dynamic_pressure: float, density: float) -> float:
+    """V = sqrt(2 q / rho) [m/s] of a dynamic pressure q [Pa] at density rho [kg/m^3]."""
+    return math.sqrt(2.0 * dynamic_pressure / density)
 
 
 @dataclass(frozen=True)
@@ -154,7 +166,7 @@ class FlightCondition:
         """q = rho V^2 / 2 [Pa]."""
         if self.velocity is None:
             raise ValueError("a condition without an airspeed has no dynamic pressure")
-        return 0.5 * self.density * self.velocity * self.velocity  # inf, not OverflowError
+        return dynamic_pressure(self.density, self.velocity)
 
     def at_velocity(self, velocity: float) -> FlightCondition:
         return dataclasses.replace(self, velocity=velocity)
@@ -166,15 +178,7 @@ class FlightCondition:
             raise InvalidInput("velocity", "is required: the airspeed to solve at")
         return OperatingPoint(self.velocity, alpha, self.density)
 
-    @staticmethod
-    def velocity_for(dynamic_pressure: float, density: float) -> float:
-        """V = sqrt(2 q / rho) [m/s]."""
-        return velocity_for(dynamic_pressure, density)
-
-
-def velocity_for(dynamic_pressure: float, density: float) -> float:
-    """V = sqrt(2 q / rho) [m/s] of a dynamic pressure q [Pa] at density rho [kg/m^3]."""
-    return math.sqrt(2.0 * dynamic_pressure / density)
+    velocity_for = staticmethod(velocity_for)
 
 
 @dataclass(frozen=True)
@@ -190,7 +194,7 @@ class OperatingPoint:
     @property
     def dynamic_pressure(self) -> float:
         """q = rho V^2 / 2 [Pa]."""
-        return 0.5 * self.density * self.velocity * self.velocity  # inf, not OverflowError
+        return dynamic_pressure(self.density, self.velocity)
 
     def at_velocity(self, velocity: float) -> OperatingPoint:
         return OperatingPoint(velocity, self.alpha, self.density)

@@ -15,7 +15,7 @@ import threading
 
 import numpy as np
 
-from solver.inputs.flight import velocity_for
+from solver.inputs.flight import dynamic_pressure, velocity_for
 from solver.numerics.cache import cached, resize
 from solver.numerics.continuation import Branch, BranchTracer
 from solver.results.equilibrium import Fold
@@ -103,7 +103,7 @@ def fold(system: CoupledSystem, density: float, velocity_limit: float) -> Fold:
         return Fold(None, None, None, None, 0.0, "no search limit: no speed requested")
     if jig(system).unloaded:
         return _bifurcation(system, density, velocity_limit)
-    found = branch(system, 0.5 * density * velocity_limit * velocity_limit)  # inf, no Overflow
+    found = branch(system, dynamic_pressure(density, velocity_limit))
     reached = velocity_for(found.reached_pressure, density)
     point = found.fold
     if point is None:

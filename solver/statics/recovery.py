@@ -20,7 +20,7 @@ from __future__ import annotations
 import time
 
 from solver.errors import ConvergenceError, NoEquilibrium
-from solver.inputs.flight import OperatingPoint, velocity_for
+from solver.inputs.flight import OperatingPoint, dynamic_pressure, velocity_for
 from solver.inputs.options import SolverOptions
 from solver.numerics.newton import newton
 from solver.results.equilibrium import Equilibrium
@@ -60,7 +60,7 @@ def from_branch(
     q = flight.dynamic_pressure
     if velocity_limit is None:
         velocity_limit = search_velocity_limit(system, flight.density, flight.velocity)
-    traced = branch(system, 0.5 * flight.density * velocity_limit**2)
+    traced = branch(system, dynamic_pressure(flight.density, velocity_limit))
     fold_point = traced.fold
     if fold_point is not None and q > fold_point.dynamic_pressure:
         fold_velocity = velocity_for(fold_point.dynamic_pressure, flight.density)
