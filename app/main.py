@@ -22,7 +22,7 @@ from app.execution.pool import WorkerPool
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import controls, flutter, health, optimize, page, solve, sweep
+from app.routes import controls, flutter, health, optimize, page, solve, sweep, wing
 from app.routes import jobs as job_routes
 from app.service import Service
 from app.settings import Settings, get_settings
@@ -164,6 +164,7 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
                     "description": "Flaps and ailerons: roll, control effectiveness, reversal.",
                 },
                 {"name": "jobs", "description": "Long work in the background, and batches."},
+                {"name": "wing", "description": "A wing as the solver takes it."},
                 {"name": "operations", "description": "Liveness, readiness and metrics."},
             ],
         )
@@ -226,7 +227,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for name, router in operations:
         at_once = Depends(job_routes.respond_async(name))
         app.include_router(router, dependencies=[at_once], responses=job_routes.ACCEPTED)
-    for module in (health, page):
+    for module in (health, page, wing):
         app.include_router(module.router)
     job_routes.install(app, jobs)
     app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")

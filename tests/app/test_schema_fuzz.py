@@ -107,6 +107,8 @@ OPERATIONS = [
     # sweeps its effectiveness.
     ("POST", "/roll"),
     ("POST", "/controls"),
+    # A wing's stations: validation and the solver's expansion only, no solve.
+    ("POST", "/wing/stations"),
     ("GET", "/healthz"),
     ("GET", "/readyz"),
     # Jobs (issue 13): fewer cases; ids the fuzzer makes up are never a job's (404).
@@ -121,7 +123,10 @@ POSITIVE, NEGATIVE = GenerationMode.POSITIVE, GenerationMode.NEGATIVE
 # Parameterless GET operations have no invalid request to generate.
 RUNS = [(m, p, POSITIVE, s) for m, p in OPERATIONS for s in SEEDS] + [
     ("POST", p, NEGATIVE, s)
-    for p in ("/solve", "/sweep", "/optimize", "/flutter", "/roll", "/controls", "/jobs")
+    for p in (
+        *("/solve", "/sweep", "/optimize", "/flutter", "/roll", "/controls", "/jobs"),
+        "/wing/stations",
+    )
     for s in SEEDS
 ]
 # Per seed and mode.
@@ -142,7 +147,7 @@ def _examples(method: str, path: str) -> int:
     """Per seed and mode; parameterless GET operations have a handful of distinct requests."""
     if path.startswith("/jobs"):
         return fuzz_examples(CASES_PER_JOB_OPERATION.get(f"{method} {path}", 5))
-    if path in ("/optimize", "/flutter", "/roll", "/controls"):
+    if path in ("/optimize", "/flutter", "/roll", "/controls", "/wing/stations"):
         return fuzz_examples(CASES_PER_DESIGN_OPERATION)
     return fuzz_examples(CASES_PER_BODY_OPERATION // 4 if method == "POST" else 5)
 
