@@ -20,6 +20,9 @@ import "./panels/solve.js";
 import "./panels/sweep.js";
 import "./panels/controls.js";
 import "./panels/flutter.js";
+import "./panels/roll.js";
+import "./panels/optimize.js";
+import "./panels/batch.js";
 import "./panels/shape.js";
 import "./panels/downloads.js";
 
