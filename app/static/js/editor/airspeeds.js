@@ -19,7 +19,7 @@ export function airspeedFields(prefix, { start, stop, count }) {
       kind: "text",
       value: "",
       placeholder: "e.g. 6, 10, 12",
-      hint: "Comma-separated; when given, instead of the range.",
+      hint: "Comma-separated, in order; replaces the range when given.",
     },
   ];
 }

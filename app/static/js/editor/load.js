@@ -18,6 +18,7 @@ import { state } from "../state.js";
 import { setBusy, setIdle } from "../status.js";
 import { loadFlight } from "./flight.js";
 import { editorRequest } from "./request.js";
+import { surfaces } from "./surfaces.js";
 import { loadWing, table, tableHolds } from "./wing.js";
 
 const isObject = (v) => v !== null && typeof v === "object" && !Array.isArray(v);
@@ -59,9 +60,12 @@ function apply(body, w, stations) {
     if (note) notes.push(note);
   }
   state.kept = Object.fromEntries(Object.entries(request).filter(([key]) => !claimed.has(key)));
+  const shownOption = (k) => k === "chordwise_panels" && surfaces.rows > 0; // the surfaces' field
   const kept = [
     ...Object.keys(state.passThrough),
-    ...Object.keys(state.options).map((k) => `options.${k}`),
+    ...Object.keys(state.options)
+      .filter((k) => !shownOption(k))
+      .map((k) => `options.${k}`),
     ...Object.keys(state.keptFlight).map((k) => `flight.${k}`),
     ...Object.keys(state.kept),
   ];
