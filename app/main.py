@@ -23,7 +23,7 @@ from app.execution.pool import WorkerPool
 from app.jobs import JobManager
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import health, operations, page
+from app.routes import health, operations, page, wing
 from app.routes import jobs as job_routes
 from app.routes.answers import Arrival
 from app.service import Service
@@ -160,6 +160,7 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
             tags=[
                 *({"name": tag, "description": text} for tag, text in solver.TAGS.items()),
                 {"name": "jobs", "description": "Long work in the background, and batches."},
+                {"name": "wing", "description": "A wing as the solver takes it."},
                 {"name": "operations", "description": "Liveness, readiness and metrics."},
             ],
         )
@@ -214,7 +215,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     for name, router in operations.routers().items():
         at_once = Depends(job_routes.respond_async(name))
         app.include_router(router, dependencies=[at_once], responses=job_routes.ACCEPTED)
-    for module in (health, page):
+    for module in (health, page, wing):
         app.include_router(module.router)
     job_routes.install(app, jobs)
     app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")

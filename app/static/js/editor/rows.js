@@ -2,7 +2,7 @@
 // masses): read into a list of the request. Each cell's data-path names the request's value, so a
 // 422 about it (wing.control_surfaces[1].hinge) is shown next to that cell.
 
-import { applyLimits, controlValue, fillHeader, rowHeader } from "./fields.js";
+import { applyLimits, controlValue, fillHeader, rowHeader } from "../inputs.js";
 
 export class RowTable {
   /** `table`: a <table> with a <thead> and <tbody>; `columns`: [{key, label, unit, kind, value,

@@ -1,7 +1,8 @@
 // The wing: planform numbers -> stations, and the editable station table (the request's wing is
 // always read from the table; the planform numbers only fill it).
 
-import { STATION_COLUMNS, fillHeader, rowHeader } from "./fields.js";
+import { fillHeader, rowHeader } from "../inputs.js";
+import { STATION_COLUMNS } from "./fields.js";
 
 export function linspace(start, stop, n) {
   if (n === 1) return [start];

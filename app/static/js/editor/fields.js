@@ -1,5 +1,6 @@
-// Every input of the page is described here, once: label, unit, default and where its value goes.
-// Adding a field the API gains later is one entry in one of these lists (see OPTIONAL_FIELDS).
+// Every input of the wing and flight editor is described here, once: label, unit, default and
+// where its value goes (a panel describes its own: panels/*.js). Adding a field the API gains
+// later is one entry in one of these lists (see OPTIONAL_FIELDS). inputs.js renders them.
 //
 // A descriptor has:
 //   key     a name unique on the page (the input's id is "f-" + key)
@@ -7,7 +8,7 @@
 //           in a 422 problem is shown next to the input. Planform fields have no path: they
 //           generate the station table, and `feeds` names the wing lists they generate.
 //   label, unit, hint   shown to the user; every input has a <label>.
-//   kind    "number" (default), "integer", "select" or "text"; `options` for a select.
+//   kind    "number" (default), "integer", "select", "text" or "flag"; `options` for a select.
 //   value   the default: the design study's wing and flight (shared/seed, chapter 14).
 
 export const PLANFORM_FIELDS = [
@@ -69,12 +70,9 @@ export const STATION_COLUMNS = [
 ];
 
 // `flightMode`: shown and sent only when the flight panel's choice ("Fly at") is that mode: at an
-// angle of attack (FlightAtAlpha) or trimmed to carry a weight (FlightAtWeight, the angle of
-// attack solved for). A request carries exactly one of alpha and weight (+ load_factor).
-export const FLIGHT_MODES = [
-  ["alpha", "Angle of attack"],
-  ["weight", "Weight (trimmed)"],
-];
+// angle of attack (FlightAtAlpha), or trimmed to carry a weight (FlightAtWeight) or a lift
+// (FlightAtLift), the angle of attack solved for. A request carries exactly one of alpha,
+// weight (+ load_factor) and lift.
 
 export const FLIGHT_FIELDS = [
   { key: "velocity", path: "flight.velocity", label: "Airspeed", unit: "m/s", value: 10, solveOnly: true },
@@ -88,6 +86,7 @@ export const FLIGHT_FIELDS = [
     flightMode: "weight",
   },
   { key: "load_factor", path: "flight.load_factor", label: "Load factor", unit: "-", value: 1, flightMode: "weight" },
+  { key: "lift", path: "flight.lift", label: "Lift of both halves", unit: "N", value: 300, flightMode: "lift" },
   { key: "density", path: "flight.density", label: "Air density", unit: "kg/m^3", value: 1.225 },
 ];
 
@@ -107,12 +106,6 @@ export const SPAR_FIELDS = [
 // The planform fields that describe EI and GJ: not used (hidden) when the stiffness comes from the spar.
 export const STIFFNESS_LAW_KEYS = ["ei_law", "ei_k", "gj_law", "gj_k"];
 
-export const SWEEP_FIELDS = [
-  { key: "sweep_start", path: "velocities.start", label: "From", unit: "m/s", value: 4 },
-  { key: "sweep_stop", path: "velocities.stop", label: "To", unit: "m/s", value: 22 },
-  { key: "sweep_count", path: "velocities.count", label: "Airspeeds", unit: "-", kind: "integer", value: 10 },
-];
-
 // Fields later API versions may add. Each is shown only when the running server's OpenAPI
 // document (/openapi.json) has `property` in components.schemas[`schema`]; its description
 // there becomes the hint. A "column" field adds a column to the station table instead. A group
@@ -123,122 +116,6 @@ export const OPTIONAL_FIELDS = [
   { key: "airfoil", schema: "Wing", property: "airfoil", path: "wing.airfoil", label: "Airfoil", kind: "text", value: "" },
   { key: "jig_twist", schema: "Wing", property: "jig_twist", path: "wing.jig_twist", label: "jig twist", unit: "deg", kind: "column", value: 0 },
 ];
-
-let uid = 0;
-
-/** A labelled input (or select) for `field`, appended to `parent`; returns the control. */
-export function renderField(field, parent, { form } = {}) {
-  const id = `f-${field.key}`;
-  const wrap = document.createElement("div");
-  wrap.className = "field";
-  const label = document.createElement("label");
-  label.htmlFor = id;
-  label.textContent = field.label;
-  if (field.unit) {
-    const unit = document.createElement("span");
-    unit.className = "unit";
-    unit.textContent = ` [${field.unit}]`;
-    label.append(unit);
-  }
-  let control;
-  if (field.kind === "select") {
-    control = document.createElement("select");
-    for (const [value, text] of field.options) {
-      const option = document.createElement("option");
-      option.value = value;
-      option.textContent = text;
-      control.append(option);
-    }
-  } else {
-    control = document.createElement("input");
-    if (field.kind === "text") {
-      control.type = "text";
-    } else {
-      control.type = "number";
-      control.step = field.kind === "integer" ? "1" : "any";
-      control.inputMode = field.kind === "integer" ? "numeric" : "decimal";
-    }
-  }
-  control.id = id;
-  control.name = field.key;
-  control.value = String(field.value);
-  if (field.path) control.dataset.path = field.path;
-  if (form) control.setAttribute("form", form);
-  wrap.append(label, control);
-  if (field.flightMode) wrap.dataset.flightMode = field.flightMode;
-  if (field.hint) {
-    const hint = document.createElement("p");
-    hint.className = "hint";
-    hint.id = `${id}-hint-${uid++}`;
-    hint.textContent = field.hint;
-    control.setAttribute("aria-describedby", hint.id);
-    wrap.append(hint);
-  }
-  parent.append(wrap);
-  return control;
-}
-
-/** Replace `table`'s header with a "#" corner and one column header per column ({key, label,
- * unit}), each with the id `${idPrefix}${key}` and, where `describe(key)` gives one, a title. */
-export function fillHeader(table, columns, { idPrefix, describe = () => undefined }) {
-  const head = table.tHead ?? table.createTHead();
-  head.replaceChildren();
-  const headRow = head.insertRow();
-  const corner = document.createElement("th");
-  corner.scope = "col";
-  corner.textContent = "#";
-  headRow.append(corner);
-  for (const column of columns) {
-    const th = document.createElement("th");
-    th.scope = "col";
-    th.id = `${idPrefix}${column.key}`;
-    th.textContent = column.label;
-    if (column.unit) {
-      const unit = document.createElement("span");
-      unit.className = "unit";
-      unit.textContent = ` [${column.unit}]`;
-      th.append(unit);
-    }
-    const description = describe(column.key);
-    if (description) th.title = description;
-    headRow.append(th);
-  }
-}
-
-/** A body row's index cell: a row header `i`, its id `id`. */
-export function rowHeader(row, id, i) {
-  const index = document.createElement("th");
-  index.scope = "row";
-  index.id = id;
-  index.textContent = String(i);
-  row.append(index);
-}
-
-/** The value of a control as the request should carry it: a number, or null when empty or not a
- * number (the service then names the field and says why), or the text of a text/select field. */
-export function controlValue(control, kind) {
-  if (kind === "select" || kind === "text") return control.value;
-  const text = control.value.trim();
-  if (text === "") return null;
-  const value = Number(text);
-  return Number.isFinite(value) ? value : null;
-}
-
-/** obj with `value` set at a dotted path ("flight.velocity"), creating objects on the way. */
-export function setPath(obj, path, value) {
-  const parts = path.split(".");
-  let node = obj;
-  for (const part of parts.slice(0, -1)) {
-    node[part] ??= {};
-    node = node[part];
-  }
-  node[parts.at(-1)] = value;
-  return obj;
-}
-
-export function getPath(obj, path) {
-  return path.split(".").reduce((node, part) => (node == null ? undefined : node[part]), obj);
-}
 
 // Control surfaces (wing.control_surfaces, ControlSurface): one row each in the surfaces table.
 // `schema` names the ControlSurface property whose description and limits the column takes from
@@ -308,21 +185,3 @@ export const CONCENTRATED_MASS_COLUMNS = [
   { key: "inertia", label: "inertia (about its CG)", unit: "kg m^2", value: 0 },
   { key: "offset", label: "CG aft of the elastic axis", unit: "m", value: 0 },
 ];
-
-export const FLUTTER_FIELDS = [
-  { key: "flutter_start", path: "velocities.start", label: "From", unit: "m/s", value: 2 },
-  { key: "flutter_stop", path: "velocities.stop", label: "To", unit: "m/s", value: 21 },
-  { key: "flutter_count", path: "velocities.count", label: "Airspeeds", unit: "-", kind: "integer", value: 20 },
-];
-
-/** An input's limits (min, max) from a JSON-schema property (its `anyOf`/`oneOf` numbers too). */
-export function applyLimits(control, property) {
-  const number = [property, ...(property?.anyOf ?? []), ...(property?.oneOf ?? [])].find(
-    (p) => p && (p.minimum !== undefined || p.maximum !== undefined || p.exclusiveMinimum !== undefined),
-  );
-  if (!number || control.type !== "number") return;
-  const min = number.minimum ?? number.exclusiveMinimum;
-  const max = number.maximum ?? number.exclusiveMaximum;
-  if (min !== undefined) control.min = String(min);
-  if (max !== undefined) control.max = String(max);
-}
