@@ -39,8 +39,8 @@ from distributed.client import FutureCancelledError
 
 from app.execution import worker
 from app.execution.pool import (
+    BackendState,
     BudgetExceeded,
-    Capacity,
     ClusterWorkerInfo,
     NotReady,
     Progress,
@@ -69,7 +69,7 @@ class _DaskWorker:
     warming: Any = None  # the warm-up task's Dask future
 
 
-class DaskWorkers:
+class DaskWorkers(BackendState):
     # A task's round trip through the scheduler is ~10 ms and costs the scheduler, the worker
     # and the client CPU of their own (benchmarks/batch_benchmark.py): a chunk of batch items
     # takes about 50 round trips' time (0.25 s: 219 items/s on 2 workers, 0.5 s: 237).
@@ -78,37 +78,17 @@ class DaskWorkers:
     def __init__(self, settings: Settings, metrics: Metrics) -> None:
         if not settings.dask_scheduler:
             raise ValueError("FLEXWING_EXECUTOR=dask needs FLEXWING_DASK_SCHEDULER=tcp://host:port")
-        self.settings = settings
+        # No slots until the cluster's threads are known: they grow and shrink with it.
+        detail = f"connecting to the Dask scheduler at {settings.dask_scheduler}"
+        super().__init__(settings, 0, detail)
         self.metrics = metrics
         self.address = settings.dask_scheduler
-        self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(0)  # grows with the cluster's threads
         self._workers: dict[str, _DaskWorker] = {}
         self._client: Any = None
-        self._ready = asyncio.Event()
-        self._started = False
-        self._closing = False
-        self._detail = f"connecting to the Dask scheduler at {self.address}"
         self._watching: asyncio.Task[None] | None = None
         self._background: set[asyncio.Task[Any]] = set()
 
     # -------------------------------------------------------------------- what it reports
-
-    @property
-    def ready(self) -> bool:
-        return self._ready.is_set() and not self._closing
-
-    @property
-    def started(self) -> bool:
-        return self._started
-
-    @property
-    def detail(self) -> str:
-        return self._detail
-
-    @property
-    def capacity(self) -> int:
-        return self._slots.size
 
     @property
     def parallelism(self) -> int:
@@ -125,9 +105,6 @@ class DaskWorkers:
             ClusterWorkerInfo(w.address, w.name, w.threads, w.warm, w.pid)
             for w in sorted(self._workers.values(), key=lambda w: w.address)
         ]
-
-    async def wait_ready(self) -> None:
-        await self._ready.wait()
 
     # ------------------------------------------------------------------------- lifecycle
 

@@ -40,6 +40,7 @@ from app.settings import Settings
 __all__ = [
     "affinity_of",
     "Backend",
+    "BackendState",
     "Progress",
     "Capacity",
     "ClusterWorkerInfo",
@@ -166,6 +167,41 @@ def affinity_of(task: Any) -> bytes | None:
     wing = getattr(task, "wing", None)
     key = getattr(wing, "key", None)
     return key if isinstance(key, bytes) else None
+
+
+class BackendState:
+    """What every backend keeps and reports alike: its readiness, whether it has been ready,
+    what it is doing (`detail`), and the slots of the tasks it runs or holds."""
+
+    def __init__(self, settings: Settings, slots: int, detail: str = "not started") -> None:
+        self.settings = settings
+        self.warm_stations = tuple(settings.warm_stations)
+        self._slots = Capacity(slots)
+        self._ready = asyncio.Event()
+        self._started = False
+        self._closing = False
+        self._detail = detail
+
+    @property
+    def ready(self) -> bool:
+        return self._ready.is_set() and not self._closing
+
+    @property
+    def started(self) -> bool:
+        """Has been ready at least once (until then a task is refused with `NotReady`)."""
+        return self._started
+
+    @property
+    def detail(self) -> str:
+        return self._detail
+
+    @property
+    def capacity(self) -> int:
+        """Tasks it runs or holds at once."""
+        return self._slots.size
+
+    async def wait_ready(self) -> None:
+        await self._ready.wait()
 
 
 class Backend(Protocol):

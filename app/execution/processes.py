@@ -45,8 +45,8 @@ from typing import Any, TypeVar
 from app.execution import worker
 from app.execution.pool import (
     THREAD_VARIABLES,
+    BackendState,
     BudgetExceeded,
-    Capacity,
     ClusterWorkerInfo,
     Collateral,
     NotReady,
@@ -226,42 +226,20 @@ class _Worker:
             self.wings.popitem(last=False)
 
 
-class LocalWorkers:
+class LocalWorkers(BackendState):
     """`FLEXWING_WORKERS` local worker processes, replaced as a whole when one is lost."""
 
     def __init__(self, settings: Settings, metrics: Metrics) -> None:
-        self.settings = settings
+        super().__init__(settings, settings.workers * settings.tasks_per_worker)
         self.metrics = metrics
-        self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(settings.workers * settings.tasks_per_worker)
         self._workers: list[_Worker] = []
         self._generation = 0
         self._seq = 0
-        self._ready = asyncio.Event()
-        self._started = False
-        self._closing = False
-        self._detail = "not started"
         self._loop: asyncio.AbstractEventLoop | None = None
         self._context: Any = None
         self._connecting: set[asyncio.Task[None]] = set()
 
     # -------------------------------------------------------------------- what it reports
-
-    @property
-    def ready(self) -> bool:
-        return self._ready.is_set() and not self._closing
-
-    @property
-    def started(self) -> bool:
-        return self._started
-
-    @property
-    def detail(self) -> str:
-        return self._detail
-
-    @property
-    def capacity(self) -> int:
-        return self._slots.size
 
     @property
     def parallelism(self) -> int:
@@ -280,9 +258,6 @@ class LocalWorkers:
 
     def cluster(self) -> list[ClusterWorkerInfo] | None:
         return None
-
-    async def wait_ready(self) -> None:
-        await self._ready.wait()
 
     # ------------------------------------------------------------------------- lifecycle
 

@@ -49,7 +49,7 @@ from solver.errors import (
 )
 from solver.inputs.flight import FlightCondition, OperatingPoint, dynamic_pressure
 from solver.inputs.options import SolverOptions
-from solver.inputs.wing import Wing
+from solver.inputs.wing import Wing, require_control_surfaces
 from solver.model.geometry import DEG
 from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
 from solver.numerics.stability import beam_response, divergence_pressure, reversal_pressure
@@ -66,6 +66,8 @@ from solver.statics.jig import at_rest
 from solver.statics.loads import flow_panel_loads
 from solver.statics.solve import solve
 from solver.statics.system import CoupledSystem, Flow
+
+_EFFECTIVENESS = "effectiveness is a control surface's"
 
 __all__ = [
     "antisymmetric_divergence",
@@ -326,8 +328,7 @@ def control_effectiveness(
     Raises `NoEquilibrium` or `ConvergenceError` as `solve` does, `InvalidInput` for a wing
     without control surfaces."""
     options = options or SolverOptions()
-    if not wing.control_surfaces:
-        raise InvalidInput("control_surfaces", "the wing has no control surfaces")
+    require_control_surfaces(wing, _EFFECTIVENESS)
     point = flight if isinstance(flight, OperatingPoint) else operating_point(wing, flight, options)
     base = without_aileron_deflections(wing)
     with numerical_failures_as(point.velocity):
@@ -353,8 +354,7 @@ def control_sweep(
     progress: called as `progress(done, total)` as each airspeed is answered."""
     started = time.perf_counter()
     options = options or SolverOptions()
-    if not wing.control_surfaces:
-        raise InvalidInput("control_surfaces", "the wing has no control surfaces")
+    require_control_surfaces(wing, _EFFECTIVENESS)
     base = without_aileron_deflections(wing)
     with numerical_failures_as(0.0):
         classical, antisymmetric = _classical(base, options)

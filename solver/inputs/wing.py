@@ -25,7 +25,7 @@ from solver.inputs.control_surfaces import ControlSurface, symmetric_camber, val
 from solver.inputs.mass import MassModel
 from solver.inputs.spar import SparDesign, ThicknessFraction, TubeSpar
 
-__all__ = ["MIN_SPACING", "MIN_STATIONS", "StationSpacing", "Wing"]
+__all__ = ["MIN_SPACING", "MIN_STATIONS", "StationSpacing", "Wing", "require_control_surfaces"]
 
 MIN_STATIONS = 3
 MIN_SPACING = 1e-4  # [-] of the semispan, between consecutive stations
@@ -410,3 +410,11 @@ def _checked(name: str, value: Any, spec: fields.Spec, n: int) -> Any:
     if spec.form == "number":
         return fields.number(name, value, spec)
     raise TypeError(f"Wing.{name}: form {spec.form!r} needs resolving by hand")
+
+
+def require_control_surfaces(wing: Wing, what: str) -> None:
+    """Refuse `wing` for `what` (a phrase: "effectiveness is a control surface's") when it has
+    no control surfaces, naming `wing.control_surfaces` (the operations and the analyses
+    alike: one check, one path)."""
+    if not wing.control_surfaces:
+        raise InvalidInput("wing.control_surfaces", f"needs at least one surface: {what}")

@@ -14,17 +14,12 @@ from solver.errors import InvalidInput
 from solver.fields import parameter
 from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
 from solver.inputs.options import SolverOptions
-from solver.inputs.wing import Wing
+from solver.inputs.wing import Wing, require_control_surfaces
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed, identity
 from solver.results.controls import ControlSweep, RollResponse
 from solver.results.quantities import Progress
 
 __all__ = ["ControlsInput", "RollInput"]
-
-
-def _needs_control_surfaces(wing: Wing, what: str) -> None:
-    if not wing.control_surfaces:
-        raise InvalidInput("wing.control_surfaces", f"needs at least one surface: {what}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,7 +68,7 @@ class RollInput:
         check_meshed(self.wing, self.options)
         if self.flight.velocity is None:
             raise InvalidInput("flight.velocity", "is required: the airspeed to roll at")
-        _needs_control_surfaces(self.wing, "the roll response is the ailerons'")
+        require_control_surfaces(self.wing, "the roll response is the ailerons'")
         if not any(not surface.symmetric for surface in self.wing.control_surfaces) and (
             self.roll_rate == 0.0 and not self.free_roll
         ):
@@ -140,7 +135,7 @@ class ControlsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        _needs_control_surfaces(self.wing, "effectiveness is a control surface's")
+        require_control_surfaces(self.wing, "effectiveness is a control surface's")
         check_airspeeds(self.velocities)
 
     @property
