@@ -31,13 +31,14 @@ wing plane, (x_cg - x_ea) c cos(sweep) for streamwise chords c.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from solver.errors import InvalidInput
-from solver.fields import number, parameter, spec_of, stations
+from solver.fields import number, parameter, spec_of, specs, stations
 from solver.inputs.spar import TubeSpar
 
 __all__ = ["ConcentratedMass", "MassModel", "SectionInertia", "section_inertia"]
@@ -161,6 +162,36 @@ class MassModel:
                     f"{where}.station", f"must be below {n_stations}, the number of stations"
                 )
         return cls(**arrays, concentrated=masses)
+
+    @classmethod
+    def resolved(cls, given: MassModel | Mapping[str, Any], n_stations: int) -> MassModel:
+        """The mass model of a wing of `n_stations`, from its fields as given (a mapping: a
+        request's, built here once) or a `MassModel` (kept when `create` made it for these
+        stations, else checked and normalised as one)."""
+        if isinstance(given, Mapping):
+            unknown = set(given) - set(specs(cls))
+            if unknown:
+                raise InvalidInput(f"mass.{sorted(unknown)[0]}", "is not a mass input")
+            return cls.create(n_stations, **given)
+        if not isinstance(given, MassModel):
+            raise InvalidInput("mass", "must be a solver.MassModel")
+        if given._made_for(n_stations):
+            return given
+        return cls.create(
+            n_stations,
+            given.mass_per_length,
+            given.center_of_gravity,
+            given.inertia_per_length,
+            given.concentrated,
+        )
+
+    def _made_for(self, n_stations: int) -> bool:
+        """`create` made it for `n_stations` (its arrays normalised: read-only, N values)."""
+        arrays = (self.mass_per_length, self.center_of_gravity, self.inertia_per_length)
+        return all(
+            isinstance(a, np.ndarray) and a.shape == (n_stations,) and not a.flags.writeable
+            for a in arrays
+        )
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -280,7 +281,7 @@ class Wing:
         *,
         spar: SparDesign | None = None,
         airfoil: object = None,
-        mass: MassModel | None = None,
+        mass: MassModel | Mapping[str, Any] | None = None,
         **given: Any,
     ) -> Wing:
         """Validate and normalise inputs; any per-station input may be one number for all, and
@@ -323,15 +324,7 @@ class Wing:
             else:
                 normal[name] = fields.stations(name, stiffness, n)
         if mass is not None:
-            if not isinstance(mass, MassModel):
-                raise InvalidInput("mass", "must be a solver.MassModel")
-            mass = MassModel.create(
-                n,
-                mass.mass_per_length,
-                mass.center_of_gravity,
-                mass.inertia_per_length,
-                mass.concentrated,
-            )
+            mass = MassModel.resolved(mass, n)
         surfaces = validate_surfaces(given.get("control_surfaces"), y_arr)
         return cls(
             y=y_arr, spar=tube, airfoil=sections, mass=mass, control_surfaces=surfaces, **normal
