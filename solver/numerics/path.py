@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.numerics.continuation import scaled_norm
+from solver.numerics.branch_points import scaled_norm
 from solver.numerics.evaluation import Evaluation
 from solver.numerics.factors import factorise, solve_with
 

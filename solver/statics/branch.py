@@ -16,8 +16,9 @@ import threading
 import numpy as np
 
 from solver.inputs.flight import dynamic_pressure, velocity_for
+from solver.numerics.branch_points import Branch
 from solver.numerics.cache import cached, resize
-from solver.numerics.continuation import Branch, BranchTracer
+from solver.numerics.continuation import BranchTracer
 from solver.results.equilibrium import Fold
 from solver.statics.jig import jig, linear_pressure
 from solver.statics.loads import lift_and_drag, panel_loads

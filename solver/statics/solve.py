@@ -26,7 +26,7 @@ from solver.fields import prefixed
 from solver.inputs.flight import FlightCondition, OperatingPoint
 from solver.inputs.options import InitialGuess, SolverOptions
 from solver.inputs.wing import Wing
-from solver.numerics.continuation import scaled_norm
+from solver.numerics.branch_points import scaled_norm
 from solver.numerics.newton import newton
 from solver.numerics.path import PathSettings, follow
 from solver.results.equilibrium import Equilibrium

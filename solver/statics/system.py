@@ -21,9 +21,9 @@ from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
 from solver.model.layout import Aerodynamics, Layout
+from solver.numerics.branch_points import branch_scales
 from solver.numerics.cache import cached, model_for
 from solver.numerics.compiled import CompiledModel
-from solver.numerics.continuation import branch_scales
 from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
 
 __all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
