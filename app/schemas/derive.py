@@ -311,7 +311,8 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
             Annotated[
                 list[_number(spec)],  # type: ignore[misc]
                 Field(min_length=solver.MIN_STATIONS, max_length=MAX_ARRAY_LENGTH),
-                Field(json_schema_extra=STATIONS_LIMIT),
+                # The root station is at 0 (what JSON Schema can say of an increasing list).
+                Field(json_schema_extra=STATIONS_LIMIT | {"prefixItems": [{"const": 0.0}]}),
                 Tag("@list"),
             ]
             | Annotated[spacing, Tag("@object")],

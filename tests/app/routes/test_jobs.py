@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import time
 from collections.abc import Callable, Iterator
@@ -19,6 +20,7 @@ from typing import Any
 import httpx
 import pytest
 
+from app.routes import jobs as jobs_routes
 from app.settings import Settings
 from tests import study
 from tests.app.conftest import Server, in_process_client
@@ -543,3 +545,14 @@ def test_a_new_operation_is_one_registry_entry() -> None:
     with pytest.raises(ValidationError) as raised:
         adapter.validate_python({"operation": "design", "request": {}})
     assert [error["loc"][-1] for error in raised.value.errors()] == ["operation"]
+
+
+@pytest.mark.parametrize("created", [1764864000.0, 1764864000.1234567, 5.0, 1e-3 + 1764864000])
+def test_a_page_cursor_is_the_exact_creation_time_and_id_in_the_documents_pattern(
+    created: float,
+) -> None:
+    """Every string of the document's pattern is a cursor (the fuzzers' GET /jobs was 'mostly
+    rejected' with an opaque base64 one), and the page's end round-trips exactly."""
+    cursor = jobs_routes._cursor({"created": created, "id": "X-ffe858wnd9pEj4wYsmig"})
+    assert re.fullmatch(jobs_routes.CURSOR_PATTERN, cursor)
+    assert jobs_routes._parse_cursor(cursor) == (created, "X-ffe858wnd9pEj4wYsmig")
