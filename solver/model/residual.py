@@ -31,7 +31,7 @@ flight the derivatives of r0 and r1 in alpha and the lift per unit q with its de
 
 The flow model (`flow=True` in the builders; control surfaces and roll: `solver.roll`,
 `solver.controls.effectiveness`) is the same model with the image half's flow as parameters
-(`solver.model.vlm`'s flow kernels: the mirror or the rotation about x, and the image's derivatives
+(`solver.model.flow_vlm`'s kernels: the mirror or the rotation about x, and the image's derivatives
 exact or turned), a steady roll rate p, which adds (p / V) (0, z, -y) to the unit freestream at
 the collocation and force points (the air seen from a wing rolling about x), and more outputs:
 the derivatives of r0, r1, the lift and the rolling moment along a control direction (a
@@ -66,19 +66,19 @@ from types import ModuleType
 import casadi as ca
 import numpy as np
 
+import solver.model.flow_vlm as flow_vlm_module
 import solver.model.geometry as geometry_module
+import solver.model.horseshoe as horseshoe_module
 import solver.model.layout as layout_module
 import solver.model.vlm as vlm_module
-from solver.model.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
-from solver.model.layout import Layout
-from solver.model.vlm import (
+from solver.model.flow_vlm import (
     flow_induced_velocities,
     flow_normal_source_columns,
     flow_source_columns,
-    induced_velocities,
-    normal_source_columns,
-    source_columns,
 )
+from solver.model.geometry import DEG, Lattice, arc_length, axis_force, lattice, span_axis
+from solver.model.layout import Layout
+from solver.model.vlm import induced_velocities, normal_source_columns, source_columns
 
 __all__ = [
     "MODEL_VERSION",
@@ -117,7 +117,12 @@ def _is_docstring(statement: ast.stmt) -> bool:
 # changes by itself with the equations or the graph they are generated from (this module and the
 # modules below it that build the graph).
 MODEL_VERSION = _graph_source_digest(
-    sys.modules[__name__], layout_module, geometry_module, vlm_module
+    sys.modules[__name__],
+    layout_module,
+    geometry_module,
+    horseshoe_module,
+    vlm_module,
+    flow_vlm_module,
 )
 
 DEG_PER_RAD = 180.0 / np.pi
@@ -931,9 +936,10 @@ def build_full_span_function(layout: Layout) -> ca.Function:
     The full-span model's right half, evaluated without derivatives: with x_image = x and the
     same camber it is the symmetric model (`build_residual_function`, the parameters' image
     and image_jacobian ignored). Its derivative along (dx, -dx) at a symmetric state is the
-    antisymmetric linearisation (`solver.model.vlm`, image_jacobian -1): this function checks it,
-    and the linearised loads of a roll answer, independently of the kernel's hand-written
-    derivatives (tests/solver/test_residual.py). The virtual machine serves it.
+    antisymmetric linearisation (`solver.model.flow_vlm`, image_jacobian -1): this function
+    checks it, and the linearised loads of a roll answer, independently of the kernel's
+    hand-written derivatives (tests/solver/model/test_residual.py). The virtual machine serves
+    it.
 
     Outputs: r0, r1 (n,); force (3, M) [m^2 per unit q]; torque (1, M) [m^3 per unit q] about the
     undeformed elastic axis; roll (1, M) [m^3 per unit q] (r x F) . e_x; center (3, M) [m];
