@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -149,6 +150,7 @@ class Wing:
         le=1000.0,
         why="a semispan of up to 1 km",
         form="positions",
+        compiled=True,
     )
     chord: np.ndarray = parameter(
         "m",
@@ -157,6 +159,7 @@ class Wing:
         le=100.0,
         why="1 mm to 100 m",
         per_station=True,
+        compiled=True,
     )
     elastic_axis: np.ndarray = parameter(
         "-",
@@ -167,6 +170,7 @@ class Wing:
         why="a fraction of the chord: on the section",
         per_station=True,
         example=0.4,
+        compiled=True,
     )
     bending_stiffness: np.ndarray = parameter(
         "N m^2",
@@ -177,6 +181,7 @@ class Wing:
         why="a foam model wing to a steel bridge",
         per_station=True,
         default=None,
+        compiled=True,
     )
     torsional_stiffness: np.ndarray = parameter(
         "N m^2",
@@ -186,6 +191,7 @@ class Wing:
         why="a foam model wing to a steel bridge",
         per_station=True,
         default=None,
+        compiled=True,
     )
     spar: TubeSpar | None = parameter(
         "",
@@ -204,6 +210,7 @@ class Wing:
         lt=60.0,
         why="the streamwise sections' strips stay sensible",
         default=0.0,
+        compiled=True,
     )
     jig_twist: np.ndarray = parameter(
         "deg",
@@ -213,6 +220,7 @@ class Wing:
         why="a built-in twist the lattice can mean",
         per_station=True,
         default=0.0,
+        compiled=True,
     )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
@@ -352,8 +360,15 @@ class Wing:
         return fields.digest(self)
 
     def arrays(self) -> tuple[np.ndarray, ...]:
-        """The station arrays in the order of the model's parameter vector: y, chord,
-        elastic_axis, EI, GJ, jig_twist."""
+        """Deprecated: y, chord, elastic_axis, EI, GJ and jig_twist, the station arrays the
+        compiled model's parameter vector once held in this order. The model now reads every
+        field it needs by name (`solver.model.layout.Layout.pack`)."""
+        warnings.warn(
+            "Wing.arrays() is deprecated: the compiled model reads the wing's fields by name "
+            "(solver.Layout.pack, Layout.wing_values)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         return (
             self.y,
             self.chord,

@@ -1,5 +1,5 @@
 """The horseshoe lattice with its image half's flow as parameters: the flow model's kernels (control
-surfaces and roll, `solver.model.residual`).
+surfaces and roll, `solver.model.flow`).
 
 The left half is then the image of the right half under T = diag(1, -1, s), its horseshoe
 (`solver.model.horseshoe`) running from T(B) to T(A) with strength s Gamma_k (the `image`

@@ -28,6 +28,7 @@ Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,10 +37,12 @@ import numpy as np
 
 __all__ = [
     "Lattice",
+    "along_span",
     "arc_length",
     "axis_force",
     "chordwise_nodes",
     "lattice",
+    "normal_force",
     "span_axis",
     "streamwise_twist",
 ]
@@ -55,14 +58,18 @@ def chordwise_nodes(k: int) -> np.ndarray:
 
 
 # The kinematics of the swept beam, each written once: symbolic (CasADi) inside the model,
-# numeric (numpy arrays, a float sweep) in the answers, the same formula either way.
+# numeric (numpy arrays, float angles) in the answers, the same formula either way. `wing` is
+# what carries the wing's parameters by name: the numeric `solver.inputs.wing.Wing`, or the
+# compiled model's parameters (`solver.model.layout.Layout.unpack`). A vector is its three
+# components (x, y, z): a sequence of arrays or symbols, or a (3, ...) array.
+Vector = Sequence[Any] | np.ndarray
 
 
-def _cos_sin(sweep_deg: Any) -> tuple[Any, Any]:
-    """cos and sin of the sweep [deg]: CasADi's of a symbol, math's of a number."""
-    if isinstance(sweep_deg, ca.SX | ca.MX | ca.DM):
-        return ca.cos(sweep_deg * DEG), ca.sin(sweep_deg * DEG)
-    return math.cos(sweep_deg * DEG), math.sin(sweep_deg * DEG)
+def _cos_sin(angle_deg: Any) -> tuple[Any, Any]:
+    """cos and sin of an angle [deg]: CasADi's of a symbol, math's of a number."""
+    if isinstance(angle_deg, ca.SX | ca.MX | ca.DM):
+        return ca.cos(angle_deg * DEG), ca.sin(angle_deg * DEG)
+    return math.cos(angle_deg * DEG), math.sin(angle_deg * DEG)
 
 
 def streamwise_twist(phi: Any, slope: Any, jig: Any, sweep_deg: Any) -> Any:
@@ -72,22 +79,37 @@ def streamwise_twist(phi: Any, slope: Any, jig: Any, sweep_deg: Any) -> Any:
     return phi * cos - slope / DEG * sin + jig
 
 
-def arc_length(y: Any, sweep_deg: Any) -> Any:
-    """[m] distance from the root along the straight, swept elastic axis: y / cos(sweep)."""
-    return y / _cos_sin(sweep_deg)[0]
+def arc_length(wing: Any) -> Any:
+    """(N,) [m] distance of each station from the root along the straight, swept elastic axis:
+    y / cos(sweep)."""
+    return wing.y / _cos_sin(wing.sweep)[0]
 
 
-def axis_force(fx: Any, fy: Any, sweep_deg: Any) -> Any:
-    """[N] the in-plane force across the elastic axis, Fx cos(sweep) - Fy sin(sweep): what a
-    heaved axis point turns into torque."""
-    cos, sin = _cos_sin(sweep_deg)
-    return fx * cos - fy * sin
-
-
-def span_axis(sweep_deg: Any) -> tuple[Any, Any]:
-    """(x, y) components of the elastic axis's unit direction e_s = (sin, cos, 0)."""
-    cos, sin = _cos_sin(sweep_deg)
+def span_axis(wing: Any) -> tuple[Any, Any]:
+    """(x, y) components of the elastic axis's unit direction e_s = (sin, cos, 0) of the
+    sweep."""
+    cos, sin = _cos_sin(wing.sweep)
     return sin, cos
+
+
+def along_span(vector: Vector, wing: Any) -> Any:
+    """A vector's component along the elastic axis, v . e_s: a point's distance along the axis
+    from the root's plane normal to it, a moment's torque about the axis."""
+    e_x, e_y = span_axis(wing)
+    return e_x * vector[0] + e_y * vector[1]
+
+
+def normal_force(force: Vector, wing: Any) -> Any:
+    """[N] a force's component normal to the wing's plane, along the heave: what the beam's
+    shear and bending carry (z up)."""
+    return force[2]
+
+
+def axis_force(force: Vector, wing: Any) -> Any:
+    """[N] the in-plane force across the elastic axis, F . (e_s x n) = Fx cos(sweep) -
+    Fy sin(sweep) (n the wing plane's normal): what a heaved axis point turns into torque."""
+    cos, sin = _cos_sin(wing.sweep)
+    return force[0] * cos - force[1] * sin
 
 
 @dataclass(frozen=True)
@@ -136,31 +158,24 @@ def _span_axes(le_y: ca.SX, le_z: ca.SX) -> tuple[ca.SX, ca.SX, ca.SX]:
     return axis_y, axis_z, scale
 
 
-def lattice(
-    heave: ca.SX,
-    slope: ca.SX,
-    phi: ca.SX,
-    y: ca.SX,
-    chord: ca.SX,
-    elastic_axis: ca.SX,
-    jig: ca.SX,
-    camber: ca.SX,
-    sweep_deg: ca.SX,
-    k: int,
-) -> Lattice:
-    """The deformed lattice.
+def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattice:
+    """The deformed lattice of the compiled model's parameters `wing` (`Layout.unpack`).
 
     Args:
         heave: (N,) [m] u; slope: (N,) [-] du/ds; phi: (N,) [deg] twist about the EA.
-        y: (N,) [m]; chord: (N,) [m] streamwise; elastic_axis: (N,) [-] fraction of chord;
-        jig: (N,) [deg] built-in twist; camber: (N, k + 1) [-] camber / chord at the chordwise
-        nodes; sweep_deg: [deg] of the elastic axis, positive aft; k: chordwise panels.
+        wing: read by name: y (N,) [m]; chord (N,) [m] streamwise; elastic_axis (N,) [-]
+            fraction of chord; jig_twist (N,) [deg] built-in twist; camber (N (k + 1),) [-]
+            camber / chord at the chordwise nodes, station-major; sweep [deg] of the elastic
+            axis, positive aft.
+        k: chordwise panels.
     """
+    y, chord, elastic_axis = wing.y, wing.chord, wing.elastic_axis
     n = y.shape[0]
-    twist = streamwise_twist(phi, slope, jig, sweep_deg) * DEG
+    camber = ca.reshape(wing.camber, k + 1, n).T
+    twist = streamwise_twist(phi, slope, wing.jig_twist, wing.sweep) * DEG
     cos_t, sin_t = ca.cos(twist), ca.sin(twist)
     ea_offset = chord * elastic_axis
-    le_x = y * ca.tan(sweep_deg * DEG) - ea_offset * cos_t
+    le_x = y * ca.tan(wing.sweep * DEG) - ea_offset * cos_t
     le_y = y
     le_z = ea_offset * sin_t + heave
     axis_y, axis_z, scale = _span_axes(le_y, le_z)

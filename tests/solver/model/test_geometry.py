@@ -7,7 +7,9 @@ import casadi as ca
 import numpy as np
 import pytest
 
+import solver
 from solver.model.geometry import chordwise_nodes, lattice
+from solver.model.layout import Layout
 
 N = 4
 Y = np.array([0.0, 1.0, 2.0, 3.0])
@@ -15,25 +17,28 @@ CHORD = np.array([1.0, 0.9, 0.8, 0.7])
 EA = 0.4
 
 
-def _lattice(heave, twist, *, slope=None, jig=None, sweep=0.0, k=1, camber=None):
-    symbols = [ca.SX.sym(name, N) for name in ("u", "s", "t", "y", "c", "ea", "jig")]
-    camber_symbol = ca.SX.sym("camber", N, k + 1)
-    sweep_symbol = ca.SX.sym("sweep")
-    lat = lattice(*symbols, camber_symbol, sweep_symbol, k)
-    outputs = [lat.left, lat.right, lat.collocation, lat.normal, lat.quarter_chord, lat.center]
-    function = ca.Function("lattice", [*symbols, camber_symbol, sweep_symbol], outputs)
-    values = function(
-        heave,
-        np.zeros(N) if slope is None else slope,
-        twist,
-        Y,
-        CHORD,
-        np.full(N, EA),
-        np.zeros(N) if jig is None else jig,
-        np.zeros((N, k + 1)) if camber is None else camber,
-        sweep,
+def _lattice(heave, twist, *, slope=None, jig=None, k=1, camber=None, **fields):
+    """The lattice's points at a state, the wing's parameters read by name from the compiled
+    model's parameter vector (`Layout.unpack`), packed from a wing with `fields`."""
+    wing = solver.Wing.create(
+        Y, CHORD, EA, 1.0, 1.0, jig_twist=0.0 if jig is None else jig, **fields
     )
-    return [np.array(v) for v in values]
+    layout = Layout(N, k)
+    p = ca.SX.sym("p", layout.n_parameters)
+    state = [ca.SX.sym(name, N) for name in ("u", "s", "t")]
+    lat = lattice(*state, layout.unpack(p), k)
+    outputs = [lat.left, lat.right, lat.collocation, lat.normal, lat.quarter_chord, lat.center]
+    function = ca.Function("lattice", [*state, p], outputs)
+    values = layout.pack(
+        layout.wing_values(wing)
+        | {
+            "camber": np.zeros((N, k + 1)) if camber is None else camber,
+            "alpha": 0.0,
+            "deformed_axis": 0.0,
+        }
+    )
+    result = function(heave, np.zeros(N) if slope is None else slope, twist, values)
+    return [np.array(v) for v in result]
 
 
 def test_chordwise_nodes_are_cosine_spaced_from_edge_to_edge():
