@@ -78,8 +78,9 @@ Method = Literal["auto", "antisymmetric", "linearised"]
 
 def is_antisymmetric(wing: Wing, alpha: float, chordwise: int) -> bool:
     """Whether the wing's aileron response at `alpha` [deg] is exactly antisymmetric: alpha 0,
-    no camber at the chordwise nodes (airfoil and flaps), no jig twist."""
-    if alpha != 0.0:
+    no dihedral (the left half is then the right one turned about x), no camber at the chordwise
+    nodes (airfoil and flaps), no jig twist."""
+    if alpha != 0.0 or wing.dihedral != 0.0:
         return False
     jig_twist = wing.jig_twist
     if jig_twist is not None and np.any(jig_twist != 0.0):
@@ -158,8 +159,9 @@ def roll(
     if method == "antisymmetric" and not exact:
         raise InvalidInput(
             "method",
-            "the exactly antisymmetric response needs alpha 0 and sections symmetric in z (no "
-            "camber at the chordwise nodes, no jig twist, no flap deflected); use 'linearised'",
+            "the exactly antisymmetric response needs alpha 0, no dihedral and sections "
+            "symmetric in z (no camber at the chordwise nodes, no jig twist, no flap deflected); "
+            "use 'linearised'",
         )
     if method not in ("auto", "antisymmetric", "linearised"):
         raise InvalidInput("method", "must be 'auto', 'antisymmetric' or 'linearised'")

@@ -212,6 +212,20 @@ class Wing:
         default=0.0,
         compiled=True,
     )
+    dihedral: float = parameter(
+        "deg",
+        "dihedral of the wing's plane, positive tips up: the flat (swept) half-wing turned about "
+        "the x axis through the root, the left half its mirror image. y and the heave stay in "
+        "the wing's plane: y is a station's distance from the root along it (projected on the "
+        "ground, y cos(dihedral)), the heave is normal to it",
+        gt=-45.0,
+        lt=45.0,
+        why="within 45 deg of level the wing is a wing, not a fin: its lift stays above half "
+        "the flat wing's (cos^2)",
+        default=0.0,
+        compiled=True,
+        kw_only=True,
+    )
     jig_twist: np.ndarray = parameter(
         "deg",
         "built-in twist of each section (nose-up > 0), on top of which the wing deforms",

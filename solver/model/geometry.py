@@ -21,6 +21,14 @@ Each conventions below changes the answer by more than 1e-6 relative when done o
 - Panel (strip i, chordwise j) is index i k + j; its bound vortex runs from 0.75 front + 0.25 back
   of its left edge to the same point of its right edge; its collocation point is midway in span on
   its 3/4 line; its normal is (FR - BL) x (FL - BR), normalised.
+- Dihedral: the half-wing above, placed in its own plane (y along it, z normal to it), is turned
+  about the x axis through the root by the dihedral angle, tips up for a positive one
+  (R_x(dihedral) applied to every point and direction); the left half is its mirror image in y,
+  the flat left half turned by -dihedral. The beam lives in the wing's plane: y is a station's
+  distance from the root along it, the heave is normal to it, the elastic axis runs along the
+  turned e_s, and the beam's loads are the panel forces resolved into the wing's frame
+  (`in_wing_plane`). AeroSandbox's sections at R_x(dihedral) LE_i, with the same twists, are
+  this lattice (its span axes and camber scale are the flat ones turned).
 
 Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up) [m].
 """
@@ -41,6 +49,7 @@ __all__ = [
     "arc_length",
     "axis_force",
     "chordwise_nodes",
+    "in_wing_plane",
     "lattice",
     "normal_force",
     "span_axis",
@@ -85,9 +94,18 @@ def arc_length(wing: Any) -> Any:
     return wing.y / _cos_sin(wing.sweep)[0]
 
 
+def in_wing_plane(vector: Vector, wing: Any) -> tuple[Any, Any, Any]:
+    """A vector's components in the wing's frame, turned back by the dihedral about x: x, y along
+    the wing's plane (a point's distance from the root along it), z normal to it (the heave's
+    direction)."""
+    cos, sin = _cos_sin(wing.dihedral)
+    return vector[0], vector[1] * cos + vector[2] * sin, vector[2] * cos - vector[1] * sin
+
+
 def span_axis(wing: Any) -> tuple[Any, Any]:
-    """(x, y) components of the elastic axis's unit direction e_s = (sin, cos, 0) of the
-    sweep."""
+    """The elastic axis's unit direction e_s = (sin, cos, 0) of the sweep in the wing's frame
+    (`in_wing_plane`): its x and y components (in geometry axes, (sin, cos cos(dihedral),
+    cos sin(dihedral)))."""
     cos, sin = _cos_sin(wing.sweep)
     return sin, cos
 
@@ -96,20 +114,29 @@ def along_span(vector: Vector, wing: Any) -> Any:
     """A vector's component along the elastic axis, v . e_s: a point's distance along the axis
     from the root's plane normal to it, a moment's torque about the axis."""
     e_x, e_y = span_axis(wing)
-    return e_x * vector[0] + e_y * vector[1]
+    x, y, _ = in_wing_plane(vector, wing)
+    return e_x * x + e_y * y
 
 
 def normal_force(force: Vector, wing: Any) -> Any:
     """[N] a force's component normal to the wing's plane, along the heave: what the beam's
-    shear and bending carry (z up)."""
-    return force[2]
+    shear and bending carry (z up at dihedral 0)."""
+    return in_wing_plane(force, wing)[2]
 
 
 def axis_force(force: Vector, wing: Any) -> Any:
     """[N] the in-plane force across the elastic axis, F . (e_s x n) = Fx cos(sweep) -
-    Fy sin(sweep) (n the wing plane's normal): what a heaved axis point turns into torque."""
+    Fy' sin(sweep) (n the wing plane's normal, Fy' the force's component along the plane,
+    `in_wing_plane`): what a heaved axis point turns into torque."""
     cos, sin = _cos_sin(wing.sweep)
-    return force[0] * cos - force[1] * sin
+    x, y, _ = in_wing_plane(force, wing)
+    return x * cos - y * sin
+
+
+def _turned(points: ca.SX, cos: ca.SX, sin: ca.SX) -> ca.SX:
+    """(3, n) points or directions turned about the x axis: R_x(dihedral) points."""
+    y, z = points[1, :], points[2, :]
+    return ca.vertcat(points[0, :], y * cos - z * sin, y * sin + z * cos)
 
 
 @dataclass(frozen=True)
@@ -166,7 +193,7 @@ def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattic
         wing: read by name: y (N,) [m]; chord (N,) [m] streamwise; elastic_axis (N,) [-]
             fraction of chord; jig_twist (N,) [deg] built-in twist; camber (N (k + 1),) [-]
             camber / chord at the chordwise nodes, station-major; sweep [deg] of the elastic
-            axis, positive aft.
+            axis, positive aft; dihedral [deg] of the wing's plane, tips up.
         k: chordwise panels.
     """
     y, chord, elastic_axis = wing.y, wing.chord, wing.elastic_axis
@@ -208,13 +235,17 @@ def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattic
     cross = _cross(front_right - back_left, front_left - back_right)
     normal = cross / ca.repmat(ca.sqrt(ca.sum1(cross**2)), 3, 1)
     quarter_chord = le + ca.repmat(chord_row * 0.25, 3, 1) * chord_axis
+    # The flat half-wing, built whole in its own plane, then turned by the dihedral: each point
+    # set and direction on its own, so that at dihedral 0 every value and derivative is the flat
+    # wing's to the bit (y cos 0 - z sin 0 = y).
+    cos, sin = _cos_sin(wing.dihedral)
     return Lattice(
-        left=left,
-        right=right,
-        center=(left + right) / 2,
-        leg=right - left,
-        collocation=collocation,
-        normal=normal,
-        quarter_chord=quarter_chord,
-        leading_edge=le,
+        left=_turned(left, cos, sin),
+        right=_turned(right, cos, sin),
+        center=_turned((left + right) / 2, cos, sin),
+        leg=_turned(right - left, cos, sin),
+        collocation=_turned(collocation, cos, sin),
+        normal=_turned(normal, cos, sin),
+        quarter_chord=_turned(quarter_chord, cos, sin),
+        leading_edge=_turned(le, cos, sin),
     )

@@ -82,7 +82,7 @@ class DesignSpace:
         self.h = np.diff(self.arc)
         self.spar = wing.spar
         self.strips = strip_sum(self.system)
-        self.trefftz = trefftz_matrix(wing.y)
+        self.trefftz = trefftz_matrix(wing.y, wing.dihedral)
         self.x = np.zeros(self.layout.n_unknowns)
         self.evaluations = 0
         self._cache: dict[bytes, DesignPoint] = {}

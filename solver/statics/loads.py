@@ -20,6 +20,7 @@ from solver.model.geometry import (
     along_span,
     arc_length,
     axis_force,
+    in_wing_plane,
     normal_force,
     streamwise_twist,
 )
@@ -177,7 +178,7 @@ def equilibrium_loads(
         torsional_stiffness=wing.torsional_stiffness,
     )
     panels = Panels(
-        y=loads.per_strip(center[1], k) / k,
+        y=loads.per_strip(in_wing_plane(center, wing)[1], k) / k,
         lift=fz,
         lift_per_span=fz / widths,
         torque=strip_torque,
