@@ -7,8 +7,9 @@ and left wings oppositely. Two ways to compute the response (`RollResponse.metho
 - "antisymmetric", exact: a wing whose sections are symmetric in z (no camber at the chordwise
   nodes, no jig twist, no flap deflected) at alpha 0 has an exactly antisymmetric equilibrium:
   the left wing is the right one turned 180 deg about x. The model with its image rotated
-  (`solver.model.vlm`, image -1) solves for it as a plain equilibrium of the right half, followed in
-  q from the rigid wing as `solver.solve` does, nonlinear in the deflections and the response.
+  (`solver.model.flow_vlm`, image -1) solves for it as a plain equilibrium of the right half,
+  followed in q from the rigid wing as `solver.solve` does, nonlinear in the deflections and the
+  response.
 - "linearised", anywhere else: the symmetric equilibrium at the flight condition (flaps
   included, `solver.solve`) and the antisymmetric disturbance of the ailerons (their camber
   -(x - hinge) delta, linear in delta [rad]) and the roll rate linearised about it, with the
@@ -77,8 +78,9 @@ Method = Literal["auto", "antisymmetric", "linearised"]
 
 def is_antisymmetric(wing: Wing, alpha: float, chordwise: int) -> bool:
     """Whether the wing's aileron response at `alpha` [deg] is exactly antisymmetric: alpha 0,
-    no camber at the chordwise nodes (airfoil and flaps), no jig twist."""
-    if alpha != 0.0:
+    no dihedral (the left half is then the right one turned about x), no camber at the chordwise
+    nodes (airfoil and flaps), no jig twist."""
+    if alpha != 0.0 or wing.dihedral != 0.0:
         return False
     jig_twist = wing.jig_twist
     if jig_twist is not None and np.any(jig_twist != 0.0):
@@ -157,8 +159,9 @@ def roll(
     if method == "antisymmetric" and not exact:
         raise InvalidInput(
             "method",
-            "the exactly antisymmetric response needs alpha 0 and sections symmetric in z (no "
-            "camber at the chordwise nodes, no jig twist, no flap deflected); use 'linearised'",
+            "the exactly antisymmetric response needs alpha 0, no dihedral and sections "
+            "symmetric in z (no camber at the chordwise nodes, no jig twist, no flap deflected); "
+            "use 'linearised'",
         )
     if method not in ("auto", "antisymmetric", "linearised"):
         raise InvalidInput("method", "must be 'auto', 'antisymmetric' or 'linearised'")
@@ -482,10 +485,10 @@ def _linear_loads(
     """The right half's panel loads' and geometry's change [N, N m, m] for the antisymmetric
     disturbance dx at the symmetric state x (the left half moving by -dx, the ailerons' camber
     +c on the right and -c on the left, the roll rate p / V = `rate`): the compiled model's own
-    derivatives with the image's turned (`solver.model.vlm`), exact; one evaluation."""
+    derivatives with the image's turned (`solver.model.flow_vlm`), exact; one evaluation."""
     layout = system.layout
     parameters = system.parameters.copy()
-    parameters[layout.direction_slice] = dx
+    parameters[layout.slot("direction")] = dx
     _, _, terms = system.model.evaluate_with_controls(x, parameters)
     loads = terms.loads_along + terms.loads_control + rate * terms.loads_rate
     return PanelLoads(

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
@@ -150,6 +151,7 @@ class Wing:
         le=1000.0,
         why="a semispan of up to 1 km",
         form="positions",
+        compiled=True,
     )
     chord: np.ndarray = parameter(
         "m",
@@ -158,6 +160,7 @@ class Wing:
         le=100.0,
         why="1 mm to 100 m",
         per_station=True,
+        compiled=True,
     )
     elastic_axis: np.ndarray = parameter(
         "-",
@@ -168,6 +171,7 @@ class Wing:
         why="a fraction of the chord: on the section",
         per_station=True,
         example=0.4,
+        compiled=True,
     )
     bending_stiffness: np.ndarray = parameter(
         "N m^2",
@@ -178,6 +182,7 @@ class Wing:
         why="a foam model wing to a steel bridge",
         per_station=True,
         default=None,
+        compiled=True,
     )
     torsional_stiffness: np.ndarray = parameter(
         "N m^2",
@@ -187,6 +192,7 @@ class Wing:
         why="a foam model wing to a steel bridge",
         per_station=True,
         default=None,
+        compiled=True,
     )
     spar: TubeSpar | None = parameter(
         "",
@@ -216,6 +222,22 @@ class Wing:
         why="the streamwise sections' strips stay sensible",
         default=0.0,
         example=15.0,
+        compiled=True,
+    )
+    dihedral: float = parameter(
+        "deg",
+        "dihedral of the wing's plane, positive tips up: the flat (swept) half-wing turned about "
+        "the x axis through the root, the left half its mirror image. y and the heave stay in "
+        "the wing's plane: y is a station's distance from the root along it (projected on the "
+        "ground, y cos(dihedral)), the heave is normal to it",
+        gt=-45.0,
+        lt=45.0,
+        why="within 45 deg of level the wing is a wing, not a fin: its lift stays above half "
+        "the flat wing's (cos^2)",
+        default=0.0,
+        example=5.0,
+        compiled=True,
+        kw_only=True,
     )
     jig_twist: np.ndarray = parameter(
         "deg",
@@ -226,6 +248,7 @@ class Wing:
         per_station=True,
         default=0.0,
         example=2.0,
+        compiled=True,
     )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
@@ -363,8 +386,15 @@ class Wing:
         return fields.digest(self)
 
     def arrays(self) -> tuple[np.ndarray, ...]:
-        """The station arrays in the order of the model's parameter vector: y, chord,
-        elastic_axis, EI, GJ, jig_twist."""
+        """Deprecated: y, chord, elastic_axis, EI, GJ and jig_twist, the station arrays the
+        compiled model's parameter vector once held in this order. The model now reads every
+        field it needs by name (`solver.model.layout.Layout.pack`)."""
+        warnings.warn(
+            "Wing.arrays() is deprecated: the compiled model reads the wing's fields by name "
+            "(solver.Layout.pack, Layout.wing_values)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         return (
             self.y,
             self.chord,

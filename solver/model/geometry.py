@@ -21,6 +21,14 @@ Each conventions below changes the answer by more than 1e-6 relative when done o
 - Panel (strip i, chordwise j) is index i k + j; its bound vortex runs from 0.75 front + 0.25 back
   of its left edge to the same point of its right edge; its collocation point is midway in span on
   its 3/4 line; its normal is (FR - BL) x (FL - BR), normalised.
+- Dihedral: the half-wing above, placed in its own plane (y along it, z normal to it), is turned
+  about the x axis through the root by the dihedral angle, tips up for a positive one
+  (R_x(dihedral) applied to every point and direction); the left half is its mirror image in y,
+  the flat left half turned by -dihedral. The beam lives in the wing's plane: y is a station's
+  distance from the root along it, the heave is normal to it, the elastic axis runs along the
+  turned e_s, and the beam's loads are the panel forces resolved into the wing's frame
+  (`in_wing_plane`). AeroSandbox's sections at R_x(dihedral) LE_i, with the same twists, are
+  this lattice (its span axes and camber scale are the flat ones turned).
 
 Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up) [m].
 """
@@ -28,6 +36,7 @@ Points are (3, ...) matrices of [x, y, z] in geometry axes (x aft, y right, z up
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,10 +45,13 @@ import numpy as np
 
 __all__ = [
     "Lattice",
+    "along_span",
     "arc_length",
     "axis_force",
     "chordwise_nodes",
+    "in_wing_plane",
     "lattice",
+    "normal_force",
     "span_axis",
     "streamwise_twist",
 ]
@@ -55,14 +67,18 @@ def chordwise_nodes(k: int) -> np.ndarray:
 
 
 # The kinematics of the swept beam, each written once: symbolic (CasADi) inside the model,
-# numeric (numpy arrays, a float sweep) in the answers, the same formula either way.
+# numeric (numpy arrays, float angles) in the answers, the same formula either way. `wing` is
+# what carries the wing's parameters by name: the numeric `solver.inputs.wing.Wing`, or the
+# compiled model's parameters (`solver.model.layout.Layout.unpack`). A vector is its three
+# components (x, y, z): a sequence of arrays or symbols, or a (3, ...) array.
+Vector = Sequence[Any] | np.ndarray
 
 
-def _cos_sin(sweep_deg: Any) -> tuple[Any, Any]:
-    """cos and sin of the sweep [deg]: CasADi's of a symbol, math's of a number."""
-    if isinstance(sweep_deg, ca.SX | ca.MX | ca.DM):
-        return ca.cos(sweep_deg * DEG), ca.sin(sweep_deg * DEG)
-    return math.cos(sweep_deg * DEG), math.sin(sweep_deg * DEG)
+def _cos_sin(angle_deg: Any) -> tuple[Any, Any]:
+    """cos and sin of an angle [deg]: CasADi's of a symbol, math's of a number."""
+    if isinstance(angle_deg, ca.SX | ca.MX | ca.DM):
+        return ca.cos(angle_deg * DEG), ca.sin(angle_deg * DEG)
+    return math.cos(angle_deg * DEG), math.sin(angle_deg * DEG)
 
 
 def streamwise_twist(phi: Any, slope: Any, jig: Any, sweep_deg: Any) -> Any:
@@ -72,22 +88,55 @@ def streamwise_twist(phi: Any, slope: Any, jig: Any, sweep_deg: Any) -> Any:
     return phi * cos - slope / DEG * sin + jig
 
 
-def arc_length(y: Any, sweep_deg: Any) -> Any:
-    """[m] distance from the root along the straight, swept elastic axis: y / cos(sweep)."""
-    return y / _cos_sin(sweep_deg)[0]
+def arc_length(wing: Any) -> Any:
+    """(N,) [m] distance of each station from the root along the straight, swept elastic axis:
+    y / cos(sweep)."""
+    return wing.y / _cos_sin(wing.sweep)[0]
 
 
-def axis_force(fx: Any, fy: Any, sweep_deg: Any) -> Any:
-    """[N] the in-plane force across the elastic axis, Fx cos(sweep) - Fy sin(sweep): what a
-    heaved axis point turns into torque."""
-    cos, sin = _cos_sin(sweep_deg)
-    return fx * cos - fy * sin
+def in_wing_plane(vector: Vector, wing: Any) -> tuple[Any, Any, Any]:
+    """A vector's components in the wing's frame, turned back by the dihedral about x: x, y along
+    the wing's plane (a point's distance from the root along it), z normal to it (the heave's
+    direction)."""
+    cos, sin = _cos_sin(wing.dihedral)
+    return vector[0], vector[1] * cos + vector[2] * sin, vector[2] * cos - vector[1] * sin
 
 
-def span_axis(sweep_deg: Any) -> tuple[Any, Any]:
-    """(x, y) components of the elastic axis's unit direction e_s = (sin, cos, 0)."""
-    cos, sin = _cos_sin(sweep_deg)
+def span_axis(wing: Any) -> tuple[Any, Any]:
+    """The elastic axis's unit direction e_s = (sin, cos, 0) of the sweep in the wing's frame
+    (`in_wing_plane`): its x and y components (in geometry axes, (sin, cos cos(dihedral),
+    cos sin(dihedral)))."""
+    cos, sin = _cos_sin(wing.sweep)
     return sin, cos
+
+
+def along_span(vector: Vector, wing: Any) -> Any:
+    """A vector's component along the elastic axis, v . e_s: a point's distance along the axis
+    from the root's plane normal to it, a moment's torque about the axis."""
+    e_x, e_y = span_axis(wing)
+    x, y, _ = in_wing_plane(vector, wing)
+    return e_x * x + e_y * y
+
+
+def normal_force(force: Vector, wing: Any) -> Any:
+    """[N] a force's component normal to the wing's plane, along the heave: what the beam's
+    shear and bending carry (z up at dihedral 0)."""
+    return in_wing_plane(force, wing)[2]
+
+
+def axis_force(force: Vector, wing: Any) -> Any:
+    """[N] the in-plane force across the elastic axis, F . (e_s x n) = Fx cos(sweep) -
+    Fy' sin(sweep) (n the wing plane's normal, Fy' the force's component along the plane,
+    `in_wing_plane`): what a heaved axis point turns into torque."""
+    cos, sin = _cos_sin(wing.sweep)
+    x, y, _ = in_wing_plane(force, wing)
+    return x * cos - y * sin
+
+
+def _turned(points: ca.SX, cos: ca.SX, sin: ca.SX) -> ca.SX:
+    """(3, n) points or directions turned about the x axis: R_x(dihedral) points."""
+    y, z = points[1, :], points[2, :]
+    return ca.vertcat(points[0, :], y * cos - z * sin, y * sin + z * cos)
 
 
 @dataclass(frozen=True)
@@ -136,31 +185,24 @@ def _span_axes(le_y: ca.SX, le_z: ca.SX) -> tuple[ca.SX, ca.SX, ca.SX]:
     return axis_y, axis_z, scale
 
 
-def lattice(
-    heave: ca.SX,
-    slope: ca.SX,
-    phi: ca.SX,
-    y: ca.SX,
-    chord: ca.SX,
-    elastic_axis: ca.SX,
-    jig: ca.SX,
-    camber: ca.SX,
-    sweep_deg: ca.SX,
-    k: int,
-) -> Lattice:
-    """The deformed lattice.
+def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattice:
+    """The deformed lattice of the compiled model's parameters `wing` (`Layout.unpack`).
 
     Args:
         heave: (N,) [m] u; slope: (N,) [-] du/ds; phi: (N,) [deg] twist about the EA.
-        y: (N,) [m]; chord: (N,) [m] streamwise; elastic_axis: (N,) [-] fraction of chord;
-        jig: (N,) [deg] built-in twist; camber: (N, k + 1) [-] camber / chord at the chordwise
-        nodes; sweep_deg: [deg] of the elastic axis, positive aft; k: chordwise panels.
+        wing: read by name: y (N,) [m]; chord (N,) [m] streamwise; elastic_axis (N,) [-]
+            fraction of chord; jig_twist (N,) [deg] built-in twist; camber (N (k + 1),) [-]
+            camber / chord at the chordwise nodes, station-major; sweep [deg] of the elastic
+            axis, positive aft; dihedral [deg] of the wing's plane, tips up.
+        k: chordwise panels.
     """
+    y, chord, elastic_axis = wing.y, wing.chord, wing.elastic_axis
     n = y.shape[0]
-    twist = streamwise_twist(phi, slope, jig, sweep_deg) * DEG
+    camber = ca.reshape(wing.camber, k + 1, n).T
+    twist = streamwise_twist(phi, slope, wing.jig_twist, wing.sweep) * DEG
     cos_t, sin_t = ca.cos(twist), ca.sin(twist)
     ea_offset = chord * elastic_axis
-    le_x = y * ca.tan(sweep_deg * DEG) - ea_offset * cos_t
+    le_x = y * ca.tan(wing.sweep * DEG) - ea_offset * cos_t
     le_y = y
     le_z = ea_offset * sin_t + heave
     axis_y, axis_z, scale = _span_axes(le_y, le_z)
@@ -193,13 +235,17 @@ def lattice(
     cross = _cross(front_right - back_left, front_left - back_right)
     normal = cross / ca.repmat(ca.sqrt(ca.sum1(cross**2)), 3, 1)
     quarter_chord = le + ca.repmat(chord_row * 0.25, 3, 1) * chord_axis
+    # The flat half-wing, built whole in its own plane, then turned by the dihedral: each point
+    # set and direction on its own, so that at dihedral 0 every value and derivative is the flat
+    # wing's to the bit (y cos 0 - z sin 0 = y).
+    cos, sin = _cos_sin(wing.dihedral)
     return Lattice(
-        left=left,
-        right=right,
-        center=(left + right) / 2,
-        leg=right - left,
-        collocation=collocation,
-        normal=normal,
-        quarter_chord=quarter_chord,
-        leading_edge=le,
+        left=_turned(left, cos, sin),
+        right=_turned(right, cos, sin),
+        center=_turned((left + right) / 2, cos, sin),
+        leg=_turned(right - left, cos, sin),
+        collocation=_turned(collocation, cos, sin),
+        normal=_turned(normal, cos, sin),
+        quarter_chord=_turned(quarter_chord, cos, sin),
+        leading_edge=_turned(le, cos, sin),
     )

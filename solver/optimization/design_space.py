@@ -29,8 +29,8 @@ from solver.inputs.design import DesignProblem
 from solver.inputs.options import SolverOptions
 from solver.inputs.spar import TubeSpar
 from solver.inputs.wing import Wing
+from solver.model.beam import DEG_PER_RAD
 from solver.model.geometry import DEG
-from solver.model.residual import DEG_PER_RAD
 from solver.numerics.newton import newton
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import strip_sum, trefftz_matrix
@@ -82,7 +82,7 @@ class DesignSpace:
         self.h = np.diff(self.arc)
         self.spar = wing.spar
         self.strips = strip_sum(self.system)
-        self.trefftz = trefftz_matrix(wing.y)
+        self.trefftz = trefftz_matrix(wing.y, wing.dihedral)
         self.x = np.zeros(self.layout.n_unknowns)
         self.evaluations = 0
         self._cache: dict[bytes, DesignPoint] = {}
@@ -106,11 +106,13 @@ class DesignSpace:
         return TubeSpar(self.spar.outer_diameter, wall, self.spar.material)
 
     def parameters(self, jig: np.ndarray, tube: TubeSpar | None) -> np.ndarray:
-        n, p = self.wing.n_stations, self.system.parameters.copy()
-        p[5 * n : 6 * n] = jig
+        """The model's parameter vector of a design: the problem's, its jig twist (and, sized,
+        its spar's stiffnesses) set by slot (`solver.model.layout`)."""
+        layout, p = self.layout, self.system.parameters.copy()
+        p[layout.slot("jig_twist")] = jig
         if self.n_wall and tube is not None:
-            p[3 * n : 4 * n] = tube.bending_stiffness
-            p[4 * n : 5 * n] = tube.torsional_stiffness
+            p[layout.slot("bending_stiffness")] = tube.bending_stiffness
+            p[layout.slot("torsional_stiffness")] = tube.torsional_stiffness
         return p
 
     def design_wing(self, v: np.ndarray) -> Wing:

@@ -16,7 +16,14 @@ import numpy as np
 
 from solver.inputs.spar import TubeSpar
 from solver.inputs.wing import Wing
-from solver.model.geometry import axis_force, span_axis, streamwise_twist
+from solver.model.geometry import (
+    along_span,
+    arc_length,
+    axis_force,
+    in_wing_plane,
+    normal_force,
+    streamwise_twist,
+)
 from solver.results.equilibrium import Panels, Stations, Totals
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import far_field_drag
@@ -82,12 +89,12 @@ def lift_and_drag(loads: PanelLoads, alpha_deg: float) -> tuple[float, float]:
 
 def _bending_moment(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
     """(N,) [N m] flapwise bending moment about each station's elastic-axis point, from the
-    panels' vertical forces at their spanwise arms along the elastic axis."""
-    e_x, e_y = span_axis(wing.sweep)
-    arm = e_x * loads.center[0] + e_y * loads.center[1]
-    fz = loads.per_strip(loads.force[2], k)
-    return outboard_sum(loads.per_strip(loads.force[2] * arm, k)) - wing.arc_length * (
-        outboard_sum(fz)
+    panels' forces normal to the wing at their arms along the elastic axis (the residual's
+    sums, `solver.model.beam`)."""
+    arm = along_span(loads.center, wing)
+    normal = normal_force(loads.force, wing)
+    return outboard_sum(loads.per_strip(normal * arm, k)) - arc_length(wing) * (
+        outboard_sum(loads.per_strip(normal, k))
     )
 
 
@@ -150,11 +157,11 @@ def equilibrium_loads(
     heave, slope, phi = x[layout.heave].copy(), x[layout.slope].copy(), x[layout.twist].copy()
     twist = streamwise_twist(phi, slope, 0.0, wing.sweep)  # elastic: without the jig twist
     fz = loads.per_strip(force[2], k)
-    shear = outboard_sum(fz)
+    shear = outboard_sum(loads.per_strip(normal_force(force, wing), k))
     bending_moment = _bending_moment(wing, loads, k)
     torque = outboard_sum(loads.per_strip(loads.torque, k))
     if system.deformed_axis:
-        across = axis_force(force[0], force[1], wing.sweep)
+        across = axis_force(force, wing)
         torque = torque - heave * outboard_sum(loads.per_strip(across, k))
     strip_torque = loads.per_strip(loads.torque, k)
     widths = np.diff(wing.y)
@@ -171,7 +178,7 @@ def equilibrium_loads(
         torsional_stiffness=wing.torsional_stiffness,
     )
     panels = Panels(
-        y=loads.per_strip(center[1], k) / k,
+        y=loads.per_strip(in_wing_plane(center, wing)[1], k) / k,
         lift=fz,
         lift_per_span=fz / widths,
         torque=strip_torque,

@@ -2,9 +2,10 @@
 
 Everything above this module speaks of a `CoupledSystem`: evaluate r0, r1, J0, J1 at a state,
 the residual alone, the panel loads, and the scaled coordinates its continuation uses. Its
-`flow` says which flow the image half carries (`solver.model.vlm`): the symmetric flow by default,
-the antisymmetric one or the antisymmetric linearisation for roll (`solver.roll`), with a roll
-rate and the control direction of one surface.
+`flow` says which flow the image half carries (`solver.model.flow_vlm`): the symmetric flow by
+default, the antisymmetric one or the antisymmetric linearisation for roll (`solver.roll`),
+with a roll rate and the control direction of one surface. The model's parameter vector is
+packed from the wing's compiled fields by name (`solver.model.layout`).
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ __all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
 
 @dataclass(frozen=True)
 class Flow:
-    """What the model's image half carries, and what disturbs the flow (`solver.model.vlm`).
+    """What the model's image half carries, and what disturbs the flow (`solver.model.flow_vlm`).
 
     image: +1 the mirror image (symmetric flow), -1 the rotation about x (exactly
         antisymmetric flow: the right half's camber then includes the ailerons'; valid for
@@ -105,7 +106,7 @@ class CoupledSystem:
         for name in ("parameters", "flow_parameters"):
             if name == "parameters" or name in self.__dict__:
                 parameters = getattr(self, name).copy()
-                parameters[self.layout.alpha_index] = alpha
+                parameters[self.layout.slot("alpha")] = alpha
                 other.__dict__[name] = parameters
         other.__dict__["layout"] = self.layout
         for name in ("model", "flow_model"):
@@ -150,11 +151,18 @@ class CoupledSystem:
         """The flow model's parameter vector (`solver.model.layout`), read-only."""
         return cached(("flow_parameters", *self.key), self._assemble_flow_parameters, _nbytes)
 
+    def _model_values(self, camber: np.ndarray) -> dict[str, object]:
+        """The model's parameters by name (`solver.model.layout`): the wing's compiled fields,
+        the camber at the chordwise nodes (N, k + 1), alpha and the torque axis."""
+        return self.layout.wing_values(self.wing) | {
+            "camber": camber,
+            "alpha": self.alpha,
+            "deformed_axis": self.deformed_axis,
+        }
+
     def _assemble_parameters(self) -> np.ndarray:
         camber = self.wing.camber_at(chordwise_nodes(self.chordwise))
-        parameters = self.layout.parameters(
-            self.wing.arrays(), camber, self.alpha, self.wing.sweep, self.deformed_axis
-        )
+        parameters = self.layout.pack(self._model_values(camber))
         parameters.setflags(write=False)
         return parameters
 
@@ -163,7 +171,7 @@ class CoupledSystem:
         camber = wing.camber_at(nodes)
         if flow.image < 0:  # the right half as it is: its ailerons deflected too
             camber = camber + antisymmetric_camber(wing.control_surfaces, wing.y, nodes)
-        control = None
+        control = np.zeros((wing.n_stations, self.chordwise + 1))
         if flow.control is not None:
             surfaces = wing.control_surfaces
             if len(flow.control) != len(surfaces):
@@ -174,18 +182,16 @@ class CoupledSystem:
                     for i, weight in enumerate(flow.control)
                     if weight != 0.0
                 ),
-                np.zeros((wing.n_stations, self.chordwise + 1)),
+                control,
             )
-        parameters = np.concatenate(
-            [
-                self.layout.parameters(
-                    wing.arrays(), camber, self.alpha, wing.sweep, self.deformed_axis
-                ),
-                self.layout.flow_parameters(
-                    flow.image, flow.image_jacobian, flow.roll_rate, control
-                ),
-            ]
-        )
+        flow_values = {
+            "image": flow.image,
+            "image_jacobian": flow.image_jacobian,
+            "roll_rate": flow.roll_rate,
+            "control": control,
+            "direction": np.zeros(self.layout.n_unknowns),
+        }
+        parameters = self.layout.pack(self._model_values(camber) | flow_values, flow=True)
         parameters.setflags(write=False)
         return parameters
 

@@ -281,6 +281,13 @@ def test_the_methods_that_do_not_apply_are_refused():
     )
     answer = roll(cambered, solver.FlightCondition(12.0, 0.0, DENSITY), K3)
     assert answer.method == "linearised"
+    # A dihedral wing's left half is its mirror image, not the right half turned about x.
+    dihedral = dataclasses.replace(wing, dihedral=3.0)
+    with pytest.raises(solver.InvalidInput, match="no dihedral") as refused:
+        roll(dihedral, solver.FlightCondition(12.0, 0.0, DENSITY), K3, method="antisymmetric")
+    assert refused.value.field == "method"
+    answer = roll(dihedral, solver.FlightCondition(12.0, 0.0, DENSITY), K3)
+    assert answer.method == "linearised"
 
 
 def test_beyond_antisymmetric_divergence_there_is_no_answer():

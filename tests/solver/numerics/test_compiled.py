@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from solver import Layout
+from solver import Layout, Wing
 from solver.model.layout import Aerodynamics
 from solver.numerics import compiled
 from solver.numerics.cache import clear_caches, model_for
@@ -34,11 +34,17 @@ def private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[P
     clear_caches()
 
 
-def _parameters(n: int) -> np.ndarray:
+def _values(n: int) -> dict[str, object]:
+    """The model's parameters by name (`Layout.pack`): a swept, tapered wing at 4 deg."""
     y = np.linspace(0.0, 3.0, n)
     chord = np.linspace(1.0, 0.5, n)
-    arrays = (y, chord, np.full(n, 0.35), 5e3 * chord**3, 4e2 * chord**3, np.zeros(n))
-    return Layout(n).parameters(arrays, np.zeros((n, 2)), 4.0, 10.0, False)
+    wing = Wing.create(y, chord, 0.35, 5e3 * chord**3, 4e2 * chord**3, sweep=10.0)
+    values = Layout.wing_values(wing)
+    return values | {"camber": np.zeros((n, 2)), "alpha": 4.0, "deformed_axis": False}
+
+
+def _parameters(n: int) -> np.ndarray:
+    return Layout(n).pack(_values(n))
 
 
 def _random_state(n: int) -> np.ndarray:
@@ -295,9 +301,10 @@ def test_a_flag_the_compiler_does_not_take_is_left_out(tmp_path: Path) -> None:
 
 def _flow_parameters(n: int) -> np.ndarray:
     """The flow model's: the rotation about x, a roll rate, a control direction."""
-    layout = Layout(n)
     control = np.outer(np.linspace(0.0, 1.0, n), [0.0, -0.5])
-    return np.concatenate([_parameters(n), layout.flow_parameters(-1.0, -1.0, 0.03, control)])
+    flow = {"image": -1.0, "image_jacobian": -1.0, "roll_rate": 0.03, "control": control}
+    direction = np.zeros(Layout(n).n_unknowns)
+    return Layout(n).pack(_values(n) | flow | {"direction": direction}, flow=True)
 
 
 def test_the_flow_model_has_a_library_of_its_own_with_the_virtual_machines_bits(

@@ -30,8 +30,8 @@ def test_at_another_alpha_only_alpha_changes_and_the_model_is_shared():
     other = system.at_alpha(-2.0)
     assert other.model is system.model and other.layout is system.layout
     changed = np.flatnonzero(other.parameters != system.parameters)
-    assert changed.tolist() == [system.layout.alpha_index]
-    assert other.parameters[system.layout.alpha_index] == -2.0
+    assert changed.tolist() == [system.layout.slot("alpha").start]
+    assert other.parameters[system.layout.slot("alpha")] == -2.0
     np.testing.assert_array_equal(other.parameters, CoupledSystem(study_wing(12), -2.0).parameters)
 
 

@@ -160,3 +160,32 @@ def test_strip_theorys_induced_drag_is_the_far_field_drag_of_its_lift():
     assert equilibrium.totals.CDi == pytest.approx(
         drag / (q * equilibrium.totals.reference_area), rel=1e-12
     )
+
+
+@pytest.mark.parametrize("dihedral", [0.0, 8.0, -20.0])
+def test_a_dihedral_wings_wake_is_a_v_whose_normalwash_biot_savart_gives(dihedral: float):
+    """The wake lies in each half's plane: trailing vortices at y (cos, sin) of the dihedral,
+    their mirror images, of opposite sense, at y (-cos, sin); the normalwash at the strips'
+    middles along the plane's normal (-sin, cos), each point vortex's v = G (-dz, dy) /
+    (2 pi r^2), summed directly. Round-off only."""
+    y = _stations("sine", 12)
+    middle, width = (y[1:] + y[:-1]) / 2, np.diff(y)
+    c, s = np.cos(np.radians(dihedral)), np.sin(np.radians(dihedral))
+    shed = np.zeros((y.size, y.size - 1))  # trailing strengths: inboard minus outboard strip
+    shed[np.arange(1, y.size), np.arange(y.size - 1)] = 1.0
+    shed[np.arange(1, y.size - 1), np.arange(1, y.size - 1)] = -1.0
+
+    def normalwash(at: np.ndarray, vortex: np.ndarray) -> float:
+        apart = at - vortex
+        velocity = np.array([-apart[1], apart[0]]) / (2 * np.pi * apart @ apart)
+        return float(velocity @ np.array([-s, c]))
+
+    kernel = np.zeros((y.size - 1, y.size))
+    for i, m in enumerate(middle):
+        for j, station in enumerate(y[1:], start=1):  # the root's vortex meets its image
+            at = m * np.array([c, s])
+            kernel[i, j] = normalwash(at, station * np.array([c, s])) - normalwash(
+                at, station * np.array([-c, s])
+            )
+    expected = -2 * np.diag(width) @ kernel @ shed
+    np.testing.assert_allclose(trefftz_matrix(y, dihedral), expected, rtol=1e-12, atol=1e-14)
