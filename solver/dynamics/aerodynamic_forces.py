@@ -1,8 +1,8 @@
 """The unsteady lattice's transfer functions: the aerodynamic loads of harmonic motion of a
 wing's natural modes and of a vertical gust at a set of reduced frequencies, about the jig or
 a static equilibrium (`solver.dynamics.lattice_loads`): what a frequency-domain gust or loads
-analysis needs, as Nastran's Q_hh and Q_hj (MSC Nastran Aeroelastic Analysis User's Guide,
-sections 2.5 and 4.x).
+analysis needs, as Nastran's generalised aerodynamic matrices of the modes and of a gust's
+upwash (MSC Nastran Aeroelastic Analysis User's Guide, section 2.5).
 
 A gust w_g e^{i omega (t - x / V)} meets each panel at its own collocation point's delay, so a
 long wing or a swept one is not met everywhere at once.

@@ -1,6 +1,6 @@
 """The wake of harmonic motion: the normalwash at the panels of each strip's wake, shed at its
 trailing edge and convected with the stream (frequency domain; Katz and Plotkin, Low-Speed
-Aerodynamics, 2nd ed., section 13.x; Hall, AIAA J. 32(12), 1994).
+Aerodynamics, 2nd ed., chapter 13; Hall, AIAA J. 32(12), 1994).
 
 A strip whose total bound circulation is Gamma e^{i omega t} sheds, by Kelvin's theorem, the
 spanwise vorticity -(1/V) dGamma/dt, which then travels with the stream: at distance xi behind
