@@ -24,6 +24,10 @@ from solver.controls.effectiveness import (
 )
 from solver.controls.roll import roll
 from solver.deprecated import renamed
+from solver.dynamics.aerodynamic_forces import (
+    MAX_REDUCED_FREQUENCY,
+    generalised_aerodynamic_forces,
+)
 from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.dynamics.modes import natural_modes
 from solver.errors import (
@@ -64,6 +68,7 @@ from solver.operations.dynamics import FlutterInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation
 from solver.optimization.optimize import optimize
+from solver.results.aerodynamic_forces import GeneralisedAerodynamicForces
 from solver.results.controls import (
     ControlEffectiveness,
     ControlSweep,
@@ -122,6 +127,7 @@ __all__ = [
     "FLIGHT_RULE",
     "ISA_SEA_LEVEL_DENSITY",
     "MAX_CAMBER",
+    "MAX_REDUCED_FREQUENCY",
     "MIN_STATIONS",
     "OPERATIONS",
     "OPERATION_TABLE",
@@ -169,6 +175,8 @@ __all__ = [
     "FlutterPoint",
     "FlutterResult",
     "Fold",
+    "generalised_aerodynamic_forces",
+    "GeneralisedAerodynamicForces",
     "HingeMoment",
     "InfeasibleDesign",
     "InitialGuess",

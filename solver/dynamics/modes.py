@@ -50,7 +50,13 @@ from solver.inputs.wing import Wing
 from solver.model.geometry import DEG
 from solver.results.flutter import ModeShape, NaturalModes
 
-__all__ = ["Structure", "mode_shape", "natural_modes", "structure"]
+__all__ = [
+    "Structure",
+    "largest_edge_displacement",
+    "mode_shape",
+    "natural_modes",
+    "structure",
+]
 
 DEG_PER_RAD = 180.0 / math.pi
 # An eigenvalue omega^2 counts as real when its imaginary part is this small relative to it:
@@ -99,6 +105,34 @@ class Structure:
         """(n, c) equivalent strip loads (F_j [N], tau_j [N m]) of load rows (2(N-1), c) in the
         residual's units: the strip loads whose bending and torsion rows these are."""
         return self.rows_to_strip_loads @ load_rows
+
+    @cached_property
+    def section_motion(self) -> tuple[np.ndarray, np.ndarray]:
+        """(N, n) each: the stations' heave [m] and streamwise pitch [rad] of w (the flow's
+        twist phi cos(sweep) - u' sin(sweep), as the static model turns its sections)."""
+        n = self.wing.n_stations
+        z = self.states
+        sweep = self.wing.sweep * DEG
+        heave = z[:n]
+        pitch = math.cos(sweep) * DEG * z[2 * n :] - math.sin(sweep) * z[n : 2 * n]
+        return heave, pitch
+
+    def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
+        """(n, P) the equivalent strip loads of the forces (P, 3) [N] at the points (P, 3) [m],
+        each on the strip `strips` (P,) holds, taken as the static model takes its panels'
+        (`solver.model.residual`): the vertical force bends the beam about the elastic axis from
+        where it acts (a force at the strip's midpoint and a bending couple), the moment about
+        the undeformed elastic axis twists it."""
+        m, count = self.n_strips, points.shape[0]
+        sweep = self.wing.sweep * DEG
+        axis = np.array([math.sin(sweep), math.cos(sweep), 0.0])  # e_s
+        midpoint = (self.arc[1:] + self.arc[:-1]) / 2
+        columns = np.arange(count)
+        loads = np.zeros((2 * m, count))
+        loads[strips, columns] = forces[:, 2]
+        loads[m + strips, columns] = np.cross(points, forces) @ axis
+        couple = forces[:, 2] * (points @ axis - midpoint[strips])
+        return loads + self.couple_to_strip_loads[:, strips] * couple
 
     @cached_property
     def modes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -299,6 +333,25 @@ def natural_modes(
     return NaturalModes(y=wing.y, modes=shapes)
 
 
+def largest_edge_displacement(beam: Structure, vector: np.ndarray) -> float:
+    """[m] the vertical displacement of a leading or trailing edge of the degrees of freedom
+    `vector` (n,) largest in magnitude (signed)."""
+    edges = _edges(beam, vector)
+    return float(edges[np.argmax(np.abs(edges))])
+
+
+def _edges(beam: Structure, vector: np.ndarray) -> np.ndarray:
+    """(2N,) [m] the leading edges' and trailing edges' vertical displacements of `vector`."""
+    wing = beam.wing
+    z = beam.states @ vector
+    n = wing.n_stations
+    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
+    sweep = wing.sweep * DEG
+    twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
+    ahead = wing.elastic_axis * wing.chord
+    return np.concatenate([heave + ahead * twist * DEG, heave - (wing.chord - ahead) * twist * DEG])
+
+
 def mode_shape(beam: Structure, vector: np.ndarray, frequency: float) -> ModeShape:
     """The shape of the degrees of freedom `vector` (n,), at `frequency` [rad/s]: scaled as in
     `natural_modes`, with its bending share."""
@@ -308,12 +361,7 @@ def mode_shape(beam: Structure, vector: np.ndarray, frequency: float) -> ModeSha
     heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
     sweep = wing.sweep * DEG
     twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
-    ahead = wing.elastic_axis * wing.chord
-    edges = np.concatenate(
-        [heave + ahead * twist * DEG, heave - (wing.chord - ahead) * twist * DEG]
-    )
-    largest = edges[np.argmax(np.abs(edges))]
-    scale = 1.0 / largest
+    scale = 1.0 / largest_edge_displacement(beam, vector)
     m, kinetic = beam.n_strips, beam.kinetic_mass
     heave_energy = vector[:m] @ kinetic[:m, :m] @ vector[:m]  # m u'^2 (times omega^2 / 2)
     twist_energy = vector[m:] @ kinetic[m:, m:] @ vector[m:]  # I_ea phi'^2

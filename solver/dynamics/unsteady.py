@@ -40,6 +40,9 @@ What the two aerodynamics are (`SolverOptions.aerodynamics`):
   loading), not an unsteady lattice: the wake's oscillating vorticity is felt only through
   C(k), section by section. At k -> 0 both are exactly the static model, so the zero-frequency
   root is the static divergence of the same aerodynamics.
+
+The unsteady lattice ("unsteady_lattice"), whose wake is shed and convected in 3D, is
+`solver.dynamics.lattice_loads`.
 """
 
 from __future__ import annotations
@@ -164,18 +167,6 @@ def unsteady_aerodynamics(
     )
 
 
-def _station_motion(structure: Structure) -> tuple[np.ndarray, np.ndarray]:
-    """(N, n) each: the stations' heave [m] and streamwise pitch [rad] of w (the flow's twist
-    phi cos(sweep) - u' sin(sweep), as the static model turns its sections)."""
-    wing = structure.wing
-    n = wing.n_stations
-    z = structure.states
-    sweep = wing.sweep * DEG
-    heave = z[:n]
-    pitch = math.cos(sweep) * DEG * z[2 * n :] - math.sin(sweep) * z[n : 2 * n]
-    return heave, pitch
-
-
 def _upwash(structure: Structure, layout: Layout) -> np.ndarray:
     """(M, 3N): N of the module docstring on z, each panel's upwash per unit s / V: minus the
     vertical displacement of its strip's three-quarter-chord line (the mean of its two
@@ -201,7 +192,7 @@ def _apparent_loads(structure: Structure) -> tuple[np.ndarray, np.ndarray]:
     (lift at the elastic axis, moment about it), as equivalent strip loads of w: the
     coefficients of s^2 and of V s."""
     wing = structure.wing
-    heave, pitch = _station_motion(structure)
+    heave, pitch = structure.section_motion
     mean_heave, mean_pitch = (heave[:-1] + heave[1:]) / 2, (pitch[:-1] + pitch[1:]) / 2
     b = ((wing.chord[1:] + wing.chord[:-1]) / 4)[:, None]
     a = (wing.elastic_axis[1:] + wing.elastic_axis[:-1] - 1.0)[:, None]  # 2 x_ea - 1, mean

@@ -219,14 +219,17 @@ class SolverOptions:
         given=ValidityLimits,
         default_factory=ValidityLimits,
     )
-    aerodynamics: Literal["lattice", "strip"] = parameter(
+    aerodynamics: Literal["lattice", "strip", "unsteady_lattice"] = parameter(
         "",
-        "the aerodynamic model: 'lattice' (the horseshoe vortex lattice, the design study's) or "
+        "the aerodynamic model: 'lattice' (the horseshoe vortex lattice, the design study's), "
         "'strip' (strip theory: each strip a two-dimensional airfoil, lift slope 2 pi, no "
         "induced velocities from the other strips or the wake; the model of the classical "
-        "divergence and flutter results); every operation runs on either",
+        "divergence and flutter results) or 'unsteady_lattice' (the same lattice with its wake "
+        "shed and convected in harmonic motion: its steady limit is the lattice, so every "
+        "static operation answers as with 'lattice'; flutter gets 3D unsteady loads); every "
+        "operation runs on each",
         form="choice",
-        choices=("lattice", "strip"),
+        choices=("lattice", "strip", "unsteady_lattice"),
         default="lattice",
     )
 
@@ -234,5 +237,5 @@ class SolverOptions:
         _limits(SolverOptions, self)
         if not isinstance(self.validity, ValidityLimits):
             raise InvalidInput("validity", "must be a solver.ValidityLimits")
-        if self.aerodynamics not in ("lattice", "strip"):
-            raise InvalidInput("aerodynamics", "must be 'lattice' or 'strip'")
+        if self.aerodynamics not in ("lattice", "strip", "unsteady_lattice"):
+            raise InvalidInput("aerodynamics", "must be 'lattice', 'strip' or 'unsteady_lattice'")

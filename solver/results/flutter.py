@@ -178,7 +178,18 @@ class FlutterResult:
         "equilibrium at each airspeed at the given angle of attack) or trim (at the given lift)",
     )
     aerodynamics: Literal["lattice", "strip"] = quantity(
-        "", "the steady aerodynamics the circulatory loads come from (options.aerodynamics)"
+        "",
+        "the steady aerodynamics the circulatory loads come from: strip, or the lattice (the "
+        "statics' own, for options.aerodynamics lattice and unsteady_lattice alike)",
+    )
+    aerodynamic_model: Literal["strip_theory", "quasi_3d_lattice", "unsteady_lattice"] = quantity(
+        "",
+        "the unsteady aerodynamics that gave the answer (options.aerodynamics): strip_theory "
+        "(Theodorsen's strip theory: each strip a two-dimensional airfoil with its wake's lag "
+        "C(k)), quasi_3d_lattice (the lattice's steady 3D circulation, lagged strip by strip by "
+        "Theodorsen's C(k): no 3D unsteady wake) or unsteady_lattice (the unsteady vortex "
+        "lattice: the same panels with their 3D wake shed and convected, the doublet lattice's "
+        "incompressible counterpart)",
     )
     unsteady: Literal["theodorsen", "quasi_steady"] = quantity(
         "", "the circulation's lag: Theodorsen's C(k), or none (C = 1)"

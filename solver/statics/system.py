@@ -86,12 +86,15 @@ class CoupledSystem:
     def of(
         cls, wing: Wing, alpha: float, options: SolverOptions, flow: Flow = SYMMETRIC
     ) -> CoupledSystem:
+        """The system `options` model. The unsteady lattice's steady limit is the lattice
+        itself: statics with it are the lattice's, on the lattice's compiled model."""
+        aerodynamics: Aerodynamics = "strip" if options.aerodynamics == "strip" else "lattice"
         return cls(
             wing,
             alpha,
             options.chordwise_panels,
             options.torque_axis == "deformed",
-            options.aerodynamics,
+            aerodynamics,
             flow,
         )
 

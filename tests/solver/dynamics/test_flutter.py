@@ -192,7 +192,7 @@ def test_in_still_air_the_roots_are_the_natural_frequencies_with_the_air_s_mass(
     assert np.all(np.abs(point.damping) < 1e-5)
 
 
-@pytest.mark.parametrize("aerodynamics", ["strip", "lattice"])
+@pytest.mark.parametrize("aerodynamics", ["strip", "lattice", "unsteady_lattice"])
 def test_no_coupling_no_flutter(aerodynamics: str):
     """The centre of gravity on the elastic axis and the axis at the quarter chord (the lift's
     own point): nothing couples bending and torsion but the apparent mass, and up to three times
@@ -228,7 +228,7 @@ def test_the_flutter_speed_scales_with_the_square_root_of_the_stiffness():
     assert stiff.reduced_frequency == pytest.approx(base.reduced_frequency, rel=1e-8)
 
 
-@pytest.mark.parametrize("aerodynamics", ["strip", "lattice"])
+@pytest.mark.parametrize("aerodynamics", ["strip", "lattice", "unsteady_lattice"])
 def test_the_zero_frequency_root_crosses_at_the_static_divergence(aerodynamics: str):
     """A wing that diverges and cannot flutter (elastic axis at 45 %, centre of gravity ahead of
     it): the divergence reported is the static linear divergence of the same aerodynamics, and
@@ -278,6 +278,117 @@ def test_the_lattice_flutters_later_than_strips_and_meets_them_at_high_aspect_ra
         ]
         ratios.append(velocities[0] / velocities[1])
     assert ratios == pytest.approx([1.385, 1.168, 1.064], abs=0.005)
+
+
+# --- The unsteady lattice --------------------------------------------------------------------
+
+# SHARPy's unsteady vortex lattice on the Goland wing at 1.02 kg/m^3: flutter at 166 m/s
+# (ImperialCollegeLondon/sharpy, tests/linear/goland_wing/test_goland_flutter.py, "at current
+# discretisation": 16 chordwise panels, 32 spanwise on both halves, a wake of 10 chords, four
+# modes, linearised about the equilibrium under gravity at alpha 0; the method of Maraniello
+# and Palacios, AIAA J. 57(6), 2019). Its docs' own Goland example reaches it "with a fine grid".
+SHARPY_GOLAND = 166.0
+GOLAND_SPEEDS = np.linspace(100.0, 220.0, 13)
+
+
+def unsteady_lattice_flutter(n: int, chordwise: int, density: float = 1.02, **kwargs):
+    options = SolverOptions(aerodynamics="unsteady_lattice", chordwise_panels=chordwise)
+    return flutter(
+        goland_wing(n), goland_mass(n), GOLAND_SPEEDS, density, options=options, **kwargs
+    )
+
+
+def test_the_goland_wing_flutters_within_5_percent_of_sharpys_unsteady_lattice():
+    """16 strips on the half wing as SHARPy's 32 on both, 8 chordwise panels (the most the
+    service takes; SHARPy's 16): 170.4 m/s at 68.2 rad/s, 2.6 % above its 166 m/s. Both
+    lattices converge at first order in their chordwise panels, ours from above (170.4 on 8,
+    172.2 on 4: ~167.4 extrapolated), and ours from below in the strips (~+2 m/s to go,
+    below): ~169 extrapolated in both; the rest is SHARPy's own discretisation, its finite
+    wake (10 chords) and its loaded state (gravity). Far from strip theory's 146.7 m/s
+    (exact, at this density) and the quasi-3D lattice's 201.9: the 3D wake."""
+    result = unsteady_lattice_flutter(17, 8)
+    onset = result.flutter
+    assert onset is not None and result.aerodynamic_model == "unsteady_lattice"
+    assert onset.velocity == pytest.approx(SHARPY_GOLAND, rel=0.05)
+    assert onset.frequency == pytest.approx(68.2, rel=0.01)  # the torsion mode's, ~70 in vacuum
+
+
+def test_the_unsteady_lattices_flutter_speed_converges_with_its_panels():
+    """First order in the chordwise panels (each panel's circulation lumped on its quarter
+    chord, tests/solver/dynamics/test_lattice_loads.py): 172.4, 169.5, 167.7 m/s on 2, 4 and
+    8 panels of 8 strips, each change at most 3/4 of the one before (measured 0.64); in the
+    strips, 172.4, 175.2, 176.8 m/s on 8, 16 and 32 (2 panels; 0.56)."""
+    chordwise = [unsteady_lattice_flutter(9, k).flutter.velocity for k in (2, 4, 8)]  # type: ignore[union-attr]
+    spanwise = [unsteady_lattice_flutter(n, 2).flutter.velocity for n in (9, 17, 33)]  # type: ignore[union-attr]
+    for speeds in (chordwise, spanwise):
+        assert abs(speeds[2] - speeds[1]) < 0.75 * abs(speeds[1] - speeds[0])
+
+
+def test_the_tabulated_aerodynamics_are_converged():
+    """Twice as many reduced frequencies, and twice as far, move the flutter speed by 1e-5
+    (measured 5e-7: the matrices vary smoothly in k, cubic splines in k / (k + k_max / 4))."""
+    base = unsteady_lattice_flutter(9, 2).flutter
+    fine = unsteady_lattice_flutter(
+        9, 2, flutter_options=FlutterOptions(max_reduced_frequency=4.0, reduced_frequencies=24)
+    ).flutter
+    assert base is not None and fine is not None
+    assert fine.velocity == pytest.approx(base.velocity, rel=1e-5)
+    assert fine.frequency == pytest.approx(base.frequency, rel=1e-5)
+
+
+def test_the_hale_wing_under_the_unsteady_lattice_flutters_between_strips_and_quasi_3d():
+    """Patil, Hodges and Cesnik's wing (aspect ratio 32): 32.53 m/s under strip theory (their
+    32.21 with Peters' 2D inflow), 35.93 under the quasi-3D lattice, 33.83 under the unsteady
+    lattice (4 chordwise panels): the tip's 3D loss with the 3D wake's lag in place of the 2D
+    C(k) is 4 % over strips; the quasi-3D model's 10 % counts the wake twice. Divergence is
+    the lattice's static divergence under either lattice (39.84 m/s, to 1e-9)."""
+    n = 17
+    wing = solver.Wing.create(np.linspace(0, 16, n), 1.0, 0.5, 2e4, 1e4)
+    mass = MassModel.create(n, 0.75, 0.5, 0.1)
+    speeds = np.linspace(1, 45, 45)
+    results = {
+        a: flutter(
+            wing, mass, speeds, 0.0889, options=SolverOptions(aerodynamics=a, chordwise_panels=4)
+        )
+        for a in ("strip", "lattice", "unsteady_lattice")
+    }
+    velocity = {a: r.flutter.velocity for a, r in results.items()}  # type: ignore[union-attr]
+    assert velocity["strip"] < velocity["unsteady_lattice"] < velocity["lattice"]
+    assert velocity["unsteady_lattice"] == pytest.approx(33.83, rel=2e-3)
+    lattice_divergence = results["lattice"].divergence
+    unsteady_divergence = results["unsteady_lattice"].divergence
+    assert lattice_divergence is not None and unsteady_divergence is not None
+    assert unsteady_divergence.velocity == pytest.approx(lattice_divergence.velocity, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("aerodynamics", "model"),
+    [
+        ("strip", "strip_theory"),
+        ("lattice", "quasi_3d_lattice"),
+        ("unsteady_lattice", "unsteady_lattice"),
+    ],
+    ids=["strip", "lattice", "unsteady-lattice"],
+)
+def test_the_result_says_which_aerodynamics_gave_it(aerodynamics: str, model: str):
+    result = flutter(
+        goland_wing(8),
+        goland_mass(8),
+        [50.0, 100.0],
+        SEA_LEVEL,
+        options=SolverOptions(aerodynamics=aerodynamics),
+    )
+    assert result.aerodynamic_model == model
+    assert result.aerodynamics == ("strip" if aerodynamics == "strip" else "lattice")
+
+
+def test_the_unsteady_lattice_about_an_unloaded_equilibrium_is_about_the_jig():
+    """At alpha 0 the uncambered wing's equilibria are the jig: the same flutter speed (1e-9,
+    the static solves' tolerance), through the loaded path (one lattice per airspeed)."""
+    jig = unsteady_lattice_flutter(9, 2, density=SEA_LEVEL).flutter
+    loaded = unsteady_lattice_flutter(9, 2, density=SEA_LEVEL, alpha=0.0).flutter
+    assert jig is not None and loaded is not None
+    assert loaded.velocity == pytest.approx(jig.velocity, rel=1e-9)
 
 
 # --- About a loaded equilibrium -------------------------------------------------------------
@@ -395,8 +506,22 @@ def test_invalid_requests_name_the_field(arguments: dict, field: str):
         ({"tolerance": 0.1}, "tolerance"),
         ({"unsteady": "wagner"}, "unsteady"),
         ({"about": "trim"}, "about"),
+        ({"max_reduced_frequency": 0.0}, "max_reduced_frequency"),
+        ({"max_reduced_frequency": 12.0}, "max_reduced_frequency"),
+        ({"reduced_frequencies": 3}, "reduced_frequencies"),
+        ({"reduced_frequencies": 41}, "reduced_frequencies"),
     ],
-    ids=["no-modes", "half-a-mode", "loose", "unknown-lag", "unknown-state"],
+    ids=[
+        "no-modes",
+        "half-a-mode",
+        "loose",
+        "unknown-lag",
+        "unknown-state",
+        "no-reduced-frequency",
+        "reduced-frequency-too-high",
+        "too-few-reduced-frequencies",
+        "too-many-reduced-frequencies",
+    ],
 )
 def test_invalid_flutter_options_name_the_field(changes: dict, field: str):
     """Named from the options themselves; a request names them from its root (flutter.modes)."""
