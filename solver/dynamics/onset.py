@@ -13,7 +13,7 @@ import numpy as np
 from solver.dynamics.linearisation import Build, States
 from solver.dynamics.pk import Tracking, oscillating, track
 from solver.dynamics.reduced import Basis
-from solver.inputs.flight import FlightCondition
+from solver.inputs.flight import FlightCondition, dynamic_pressure
 from solver.results.flutter import DivergenceOnset, FlutterOnset, FlutterPoint, NoFlutter
 
 __all__ = ["Tracked", "flutter_onset", "linear_onset", "no_flutter"]
@@ -62,7 +62,7 @@ def flutter_onset(
             for mode in modes
         ]
         velocity, root, mode, _ = min(located, key=lambda item: item[0])
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         frequency = float(root.imag)
         onset = FlutterOnset(velocity, q, frequency, frequency * semichord / velocity, int(mode))
         return onset, sum(item[3] for item in located)

@@ -32,6 +32,7 @@ import scipy.interpolate
 from solver.dynamics.lattice_loads import LatticeLoads
 from solver.dynamics.modes import Structure
 from solver.dynamics.unsteady import UnsteadyAerodynamics, theodorsen
+from solver.inputs.flight import dynamic_pressure
 from solver.unsteady_lattice.wake import ShedWake
 
 __all__ = [
@@ -107,7 +108,7 @@ class TheodorsenEquations:
         beyond divergence. At s = 0 the equations are the static model's, K w = q Q w."""
         if velocity == 0:
             return None
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         # No lag: real coefficients, a real eigenvalue problem (half the work of a complex one).
         stiffness = self.stiffness - q * (self.geometric + self.lagged_deformation.sum(axis=0).real)
         damping = -(q / velocity) * self.lagged_motion.sum(axis=0).real
@@ -130,7 +131,7 @@ class TheodorsenEquations:
         """(t, 2r) the roots s [1/s] of the equations with the lag of each of the t
         `frequency` [rad/s] (C = 1 without `lagged`, or in still air)."""
         r, t = self.stiffness.shape[0], frequency.shape[0]
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         if velocity > 0 and lagged:
             lag = theodorsen(frequency[:, None] * self.semichord[None, :] / velocity)
         else:
@@ -231,7 +232,7 @@ class LatticeEquations:
         positive beyond divergence. At s = 0 they are the static model's, K w = q Q w."""
         if velocity == 0:
             return None
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         stiffness = self.stiffness - q * (self.geometric + self.lattice_stiffness[0].real)
         damping = -(q / velocity) * self.lattice_damping[0].real
         mass = self.mass - 0.5 * density * self.lattice_inertia[0].real
@@ -260,7 +261,7 @@ class LatticeEquations:
         `frequency` [rad/s] (those of zero frequency without `lagged`; in still air the
         infinite-frequency limit, the apparent mass)."""
         t = frequency.shape[0]
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         if velocity == 0:
             reduced = np.full(t, np.inf)
         elif lagged:

@@ -54,6 +54,7 @@ import numpy as np
 import scipy.special
 
 from solver.dynamics.modes import Structure
+from solver.inputs.flight import dynamic_pressure
 from solver.model.geometry import DEG
 from solver.model.layout import Layout
 from solver.numerics.evaluation import Evaluation
@@ -131,7 +132,7 @@ class UnsteadyAerodynamics:
         `lag` (M,) C(k) of each panel's circulation (default: Theodorsen's at k = |Im s| b / V)."""
         if lag is None:
             lag = theodorsen(abs(s.imag) * self.semichord / velocity)
-        q = 0.5 * density * velocity * velocity
+        q = dynamic_pressure(density, velocity)
         circulation = self.deformation + (s / velocity) * self.motion
         return q * (self.geometric + (self.circulation_loads * lag) @ circulation) + density * (
             s * s * self.apparent_mass + velocity * s * self.apparent_damping

@@ -159,10 +159,11 @@ about a loaded wing), and the natural modes with their shapes.
 
 Linearised about the static equilibrium of `flight` at each airspeed (its tangent stiffness,
 aerodynamic stiffness included), or about the unloaded jig (`flutter.about`).
-`options.aerodynamics`: strip (Theodorsen's strip theory, the model of the published results) or
-lattice (the lattice's steady 3D circulation with Theodorsen's lag). Needs `wing.mass` (422
-naming it without). No flutter in the range: `status` `no_flutter_in_range`, with the least
-damped mode.""",
+`options.aerodynamics`: strip (Theodorsen's strip theory, the model of the published results),
+lattice (the lattice's steady 3D circulation with Theodorsen's lag) or unsteady_lattice (the
+lattice's panels with their wake shed and convected in the frequency domain: 3D unsteady
+aerodynamics); `aerodynamic_model` says which gave the answer. Needs `wing.mass` (422 naming it
+without). No flutter in the range: `status` `no_flutter_in_range`, with the least damped mode.""",
         refusals="`wing.mass` is required (invalid input naming it without); a root that could "
         "not be followed (/problems/not-converged). Airspeeds past a loaded wing's equilibria are "
         "answered in their points (`status` no_equilibrium).",

@@ -31,6 +31,7 @@ import numpy as np
 
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes, lattice
+from solver.model.layout import Layout
 
 __all__ = ["Panels", "panels"]
 
@@ -78,11 +79,14 @@ def panels(wing: Wing, chordwise: int, state: np.ndarray | None = None) -> Panel
     `solver.model.layout`; default the jig."""
     n, k = wing.n_stations, chordwise
     z = np.zeros(3 * n) if state is None else np.asarray(state, dtype=float)[: 3 * n]
-    camber = wing.camber_at(chordwise_nodes(k))
-    parts = (z[:n], z[n : 2 * n], z[2 * n :], wing.y, wing.chord, wing.elastic_axis)
+    layout = Layout(n, k)
+    parameters = layout.pack(
+        layout.wing_values(wing)
+        | {"camber": wing.camber_at(chordwise_nodes(k)), "alpha": 0.0, "deformed_axis": 0.0}
+    )
     left, right, collocation, normal, leading_edge = (
         np.array(value).T
-        for value in _lattice_function(n, k)(*parts, wing.jig_twist, camber, wing.sweep)
+        for value in _lattice_function(n, k)(z[:n], z[n : 2 * n], z[2 * n :], parameters)
     )
     strips = n - 1
     front_left, back_left = _walk_aft(leading_edge[:-1], left.reshape(strips, k, 3))
@@ -113,17 +117,15 @@ def panels(wing: Wing, chordwise: int, state: np.ndarray | None = None) -> Panel
 @functools.lru_cache(maxsize=16)
 def _lattice_function(n: int, k: int) -> ca.Function:
     """The static model's lattice (`solver.model.geometry.lattice`) of N stations and k
-    chordwise panels as a function of numbers: (heave, slope, twist, y, chord, elastic_axis,
-    jig (N each), camber (N, k + 1), sweep) -> (left, right, collocation, normal (3, M),
-    leading_edge (3, N))."""
-    heave, slope, phi, y, chord, axis, jig = (
-        ca.SX.sym(name, n) for name in ("u", "du", "phi", "y", "c", "ea", "jig")
-    )
-    camber, sweep = ca.SX.sym("camber", n, k + 1), ca.SX.sym("sweep")
-    symbols = [heave, slope, phi, y, chord, axis, jig]
-    grid = lattice(heave, slope, phi, y, chord, axis, jig, camber, sweep, k)
+    chordwise panels as a function of numbers: (heave, slope, twist (N each), the model's
+    parameter vector (`solver.model.layout`, its slots by name)) -> (left, right, collocation,
+    normal (3, M), leading_edge (3, N))."""
+    layout = Layout(n, k)
+    heave, slope, phi = (ca.SX.sym(name, n) for name in ("u", "du", "phi"))
+    p = ca.SX.sym("p", layout.n_parameters)
+    grid = lattice(heave, slope, phi, layout.unpack(p), k)
     outputs = [grid.left, grid.right, grid.collocation, grid.normal, grid.leading_edge]
-    return ca.Function("unsteady_lattice_panels", [*symbols, camber, sweep], outputs)
+    return ca.Function("unsteady_lattice_panels", [heave, slope, phi, p], outputs)
 
 
 def _walk_aft(edge: np.ndarray, bound: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
