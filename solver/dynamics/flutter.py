@@ -65,6 +65,7 @@ from solver.dynamics.reduced import (
 from solver.dynamics.unsteady import unsteady_aerodynamics
 from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.fields import integer, is_number, number, parameter, specs
+from solver.inputs.flight import dynamic_pressure
 from solver.inputs.mass import MassModel
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
@@ -382,7 +383,7 @@ def _result(
     for velocity in speeds:
         i = at[float(velocity)]
         roots = tracked.roots[i]
-        q = 0.5 * density * float(velocity) ** 2
+        q = dynamic_pressure(density, float(velocity))
         if roots is None:
             points.append(
                 FlutterPoint(
