@@ -45,6 +45,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["results.equilibrium"],
     ["results.sweep", "results.flutter"],
     ["results.design", "results.controls", "results.aerodynamic_forces"],
+    ["statics.inertia"],
     ["statics.system"],
     ["statics.trefftz"],
     ["statics.loads"],

@@ -47,7 +47,12 @@ from solver.errors import (
     SolverError,
     numerical_failures_as,
 )
-from solver.inputs.flight import FlightCondition, OperatingPoint, dynamic_pressure
+from solver.inputs.flight import (
+    FlightCondition,
+    OperatingPoint,
+    check_over_airspeeds,
+    dynamic_pressure,
+)
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing, require_control_surfaces
 from solver.model.geometry import DEG
@@ -344,6 +349,7 @@ def control_sweep(
     *,
     lift: float | None = None,
     progress: Progress | None = None,
+    load_factor: float | None = None,
 ) -> ControlSweep:
     """`control_effectiveness` at each airspeed [m/s], in the given order, with each surface's
     reversal two ways (the linear eigenvalue, and where the sweep's elastic derivative changes
@@ -351,10 +357,14 @@ def control_sweep(
 
     alpha: [deg] the jig's angle of attack at every airspeed, or None with `lift` [N]: trimmed,
         each airspeed at the alpha at which the wing (ailerons neutral) carries it.
-    progress: called as `progress(done, total)` as each airspeed is answered."""
+    progress: called as `progress(done, total)` as each airspeed is answered.
+    load_factor: the load factor the wing's own mass carries (`solver.FlightCondition`: trimmed,
+        None is 1; at a given alpha, None is no inertial load, and a load factor is refused:
+        it loads one flight condition, not a sweep)."""
     started = time.perf_counter()
     options = options or SolverOptions()
     require_control_surfaces(wing, _EFFECTIVENESS)
+    check_over_airspeeds(alpha, load_factor, wing.mass is not None)
     base = without_aileron_deflections(wing)
     with numerical_failures_as(0.0):
         classical, antisymmetric = _classical(base, options)
@@ -364,7 +374,7 @@ def control_sweep(
             progress(len(points), len(velocities))
         try:
             with numerical_failures_as(velocity):
-                flight = _point(base, velocity, alpha, lift, density, options)
+                flight = _point(base, velocity, alpha, lift, density, options, load_factor)
                 controls = _at_flight(base, flight, options, classical)
         except SolverError as error:
             status: Literal["no_equilibrium", "not_converged"] = (
@@ -402,11 +412,13 @@ def _point(
     lift: float | None,
     density: float,
     options: SolverOptions,
+    load_factor: float | None,
 ) -> OperatingPoint:
-    """The airspeed's point: at `alpha`, or trimmed to `lift` (`wing` has its ailerons neutral)."""
+    """The airspeed's point: at `alpha`, or trimmed to `lift` (`wing` has its ailerons
+    neutral), the wing's mass carrying `load_factor` (`FlightCondition`)."""
     if alpha is not None:
-        return OperatingPoint(velocity, alpha, density)
-    trimmed = FlightCondition(velocity=velocity, density=density, lift=lift)
+        return OperatingPoint(velocity, alpha, density, load_factor)
+    trimmed = FlightCondition(velocity, density=density, lift=lift, load_factor=load_factor)
     return solve(wing, trimmed, options=options).flight
 
 

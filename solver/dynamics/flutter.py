@@ -65,7 +65,7 @@ from solver.dynamics.reduced import (
 from solver.dynamics.unsteady import unsteady_aerodynamics
 from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.fields import integer, is_number, number, parameter, specs
-from solver.inputs.flight import dynamic_pressure
+from solver.inputs.flight import check_over_airspeeds, dynamic_pressure
 from solver.inputs.mass import MassModel
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
@@ -190,6 +190,7 @@ def flutter(
     options: SolverOptions | None = None,
     flutter_options: FlutterOptions | None = None,
     progress: Progress | None = None,
+    load_factor: float | None = None,
 ) -> FlutterResult:
     """Damping and frequency of every mode of `wing` with `mass` at each airspeed [m/s] (the
     V-g and V-f diagrams) at `density` [kg/m^3], the flutter and divergence speeds.
@@ -199,7 +200,9 @@ def flutter(
     chooses the aerodynamics ("strip": Theodorsen's strip theory; "lattice", the default: the
     lattice's steady circulation with Theodorsen's lag; "unsteady_lattice": the unsteady
     vortex lattice), `flutter_options` the basis and the lag. `progress(done, total)` is called
-    after each requested airspeed.
+    after each requested airspeed. About a loaded equilibrium the wing's own mass weighs
+    `load_factor` g against the lift (`solver.FlightCondition`: trimmed, None is 1 g; at a given
+    alpha, None is none).
 
     Raises `InvalidInput` without a mass model or for invalid inputs; `ConvergenceError` when a
     root cannot be followed. Airspeeds beyond a loaded wing's fold have no roots
@@ -212,7 +215,8 @@ def flutter(
     count = min(_DEFAULT_MODES, beam.n_dof) if settings.modes is None else settings.modes
     if count > beam.n_dof:
         raise InvalidInput("flutter.modes", f"must be at most {beam.n_dof} on this mesh")
-    states = States(wing, density, alpha, lift, options)
+    check_over_airspeeds(alpha, load_factor, True)
+    states = States(wing, density, alpha, lift, options, load_factor)
     with numerical_failures_as(float(speeds[0])):
         basis, build = _model(beam, states, options, settings, count)
         grid = _grid(speeds)

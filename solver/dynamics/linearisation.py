@@ -40,9 +40,10 @@ class States:
         alpha: float | None,
         lift: float | None,
         options: SolverOptions,
+        load_factor: float | None = None,
     ) -> None:
         self.wing, self.density, self.options = wing, density, options
-        self.alpha, self.lift = alpha, lift
+        self.alpha, self.lift, self.load_factor = alpha, lift, load_factor
         self.about: Literal["jig", "alpha", "trim"] = (
             "jig" if alpha is None and lift is None else "alpha" if lift is None else "trim"
         )
@@ -90,8 +91,12 @@ class States:
     def _flight(self, velocity: float | None) -> FlightCondition:
         """The flight the loaded wing flies at `velocity` [m/s] (None: at each of a sweep's)."""
         if self.about == "alpha":
-            return FlightCondition(velocity, self.alpha or 0.0, self.density)
-        return FlightCondition(velocity, density=self.density, lift=self.lift or 0.0)
+            return FlightCondition(
+                velocity, self.alpha or 0.0, self.density, load_factor=self.load_factor
+            )
+        return FlightCondition(
+            velocity, density=self.density, lift=self.lift or 0.0, load_factor=self.load_factor
+        )
 
     def _solve(self, velocity: float) -> Equilibrium | SolverError:
         try:

@@ -21,6 +21,7 @@ __all__ = [
     "FlightCondition",
     "OperatingPoint",
     "VelocityRange",
+    "check_over_airspeeds",
     "dynamic_pressure",
     "velocity_for",
 ]
@@ -28,8 +29,8 @@ ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
 
 
 FLIGHT_RULE = (
-    "give exactly one of alpha (at a given angle of attack), lift, or weight with an optional "
-    "load_factor (trimmed: the angle of attack is solved for)"
+    "give exactly one of alpha (at a given angle of attack), lift, or weight (trimmed: the "
+    "angle of attack is solved for), with an optional load_factor"
 )
 
 
@@ -99,21 +100,23 @@ class FlightCondition:
         kw_only=True,
         example=300.0,
     )
-    load_factor: float = parameter(
+    load_factor: float | None = parameter(
         "-",
-        "load factor n, nonzero",
+        "load factor n, nonzero: trimmed to a weight, the lift carried is n times it (null: "
+        "1); the wing's own mass (wing.mass) weighs n g against the lift in trimmed flight "
+        "(null: 1 g), and at a given alpha only when n is given (inertia relief)",
         ge=-10.0,
         le=10.0,
         why="past any aircraft's manoeuvre envelope; not 0",
-        default=1.0,
+        default=None,
         kw_only=True,
-        example=1.0,
+        example=2.5,
     )
 
     # The ways a condition is given: each names the fields it takes beside velocity and density.
     WAYS: ClassVar[dict[str, tuple[str, ...]]] = {
-        "alpha": ("alpha",),
-        "lift": ("lift",),
+        "alpha": ("alpha", "load_factor"),
+        "lift": ("lift", "load_factor"),
         "weight": ("weight", "load_factor"),
     }
     RULE: ClassVar[str] = FLIGHT_RULE
@@ -124,7 +127,7 @@ class FlightCondition:
             if value is not None:
                 fields.number(name, value, spec)
         ways = [way for way in ("alpha", "lift", "weight") if getattr(self, way) is not None]
-        if len(ways) != 1 or (self.load_factor != 1.0 and self.weight is None):
+        if len(ways) != 1:
             raise InvalidInput("", FLIGHT_RULE)
         if self.lift == 0:
             raise InvalidInput(
@@ -158,8 +161,16 @@ class FlightCondition:
         if self.lift is not None:
             return self.lift
         if self.weight is not None:
-            return self.load_factor * self.weight
+            return (1.0 if self.load_factor is None else self.load_factor) * self.weight
         return None
+
+    @property
+    def inertial_load_factor(self) -> float | None:
+        """The load factor the wing's own mass carries (`solver.statics.inertia`): trimmed,
+        the one given or 1; at a given alpha, the one given or None (no inertial load)."""
+        if self.trimmed and self.load_factor is None:
+            return 1.0
+        return self.load_factor
 
     @property
     def dynamic_pressure(self) -> float:
@@ -176,9 +187,21 @@ class FlightCondition:
         trimmed condition at its trimmed alpha)."""
         if self.velocity is None:
             raise InvalidInput("velocity", "is required: the airspeed to solve at")
-        return OperatingPoint(self.velocity, alpha, self.density)
+        return OperatingPoint(self.velocity, alpha, self.density, self.inertial_load_factor)
 
     velocity_for = staticmethod(velocity_for)
+
+
+def check_over_airspeeds(alpha: float | None, load_factor: float | None, has_mass: bool) -> None:
+    """Refuse a load factor on the wing's mass at a given alpha over airspeeds (a sweep, a
+    control sweep, flutter about the loaded wing): it loads one flight condition; over airspeeds
+    the wing flies trimmed (naming `flight.load_factor`)."""
+    if alpha is not None and load_factor is not None and has_mass:
+        raise InvalidInput(
+            "flight.load_factor",
+            "at a given alpha a load factor loads the wing's mass for one flight condition "
+            "(/solve, /roll); over airspeeds fly trimmed: lift or weight, with the load factor",
+        )
 
 
 @dataclass(frozen=True)
@@ -190,6 +213,9 @@ class OperatingPoint:
     velocity: float
     alpha: float
     density: float = ISA_SEA_LEVEL_DENSITY
+    # The load factor the wing's own mass carries at this point (`solver.statics.inertia`);
+    # None: no inertial load.
+    load_factor: float | None = None
 
     @property
     def dynamic_pressure(self) -> float:
@@ -197,7 +223,7 @@ class OperatingPoint:
         return dynamic_pressure(self.density, self.velocity)
 
     def at_velocity(self, velocity: float) -> OperatingPoint:
-        return OperatingPoint(velocity, self.alpha, self.density)
+        return OperatingPoint(velocity, self.alpha, self.density, self.load_factor)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,13 @@ from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
 
-__all__ = ["MAX_CHORDWISE_PANELS", "InitialGuess", "SolverOptions", "ValidityLimits"]
+__all__ = [
+    "require_flow_model",
+    "MAX_CHORDWISE_PANELS",
+    "InitialGuess",
+    "SolverOptions",
+    "ValidityLimits",
+]
 MAX_CHORDWISE_PANELS = 8
 
 
@@ -239,3 +245,15 @@ class SolverOptions:
             raise InvalidInput("validity", "must be a solver.ValidityLimits")
         if self.aerodynamics not in ("lattice", "strip", "unsteady_lattice"):
             raise InvalidInput("aerodynamics", "must be 'lattice', 'strip' or 'unsteady_lattice'")
+
+
+def require_flow_model(aerodynamics: str) -> None:
+    """Refuse strip theory (`aerodynamics`, as options name it) where the lattice's flow model
+    is needed: control derivatives, roll and the antisymmetric flow (naming
+    `options.aerodynamics`)."""
+    if aerodynamics == "strip":
+        raise InvalidInput(
+            "options.aerodynamics",
+            "control surfaces' derivatives, roll and the antisymmetric flow are the lattice's: "
+            "strip theory answers the symmetric statics and flutter only",
+        )

@@ -27,7 +27,14 @@ from solver.inputs.control_surfaces import ControlSurface, symmetric_camber, val
 from solver.inputs.mass import MassModel
 from solver.inputs.spar import SparDesign, ThicknessFraction, TubeSpar
 
-__all__ = ["MIN_SPACING", "MIN_STATIONS", "StationSpacing", "Wing", "require_control_surfaces"]
+__all__ = [
+    "MIN_SPACING",
+    "MIN_STATIONS",
+    "StationSpacing",
+    "Wing",
+    "require_control_surfaces",
+    "require_mass",
+]
 
 MIN_STATIONS = 3
 MIN_SPACING = 1e-4  # [-] of the semispan, between consecutive stations
@@ -441,3 +448,14 @@ def require_control_surfaces(wing: Wing, what: str) -> None:
     alike: one check, one path)."""
     if not wing.control_surfaces:
         raise InvalidInput("wing.control_surfaces", f"needs at least one surface: {what}")
+
+
+def require_mass(wing: Wing, what: str) -> None:
+    """Refuse `wing` for `what` (a phrase: "vibration and flutter need it") without its mass
+    model, naming `wing.mass`."""
+    if wing.mass is None:
+        raise InvalidInput(
+            "wing.mass",
+            f"is required: {what} (mass per unit length, centre of gravity and inertia per "
+            "station)",
+        )

@@ -12,8 +12,8 @@ from solver.controls.effectiveness import control_sweep
 from solver.controls.roll import roll
 from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
-from solver.inputs.options import SolverOptions
+from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
+from solver.inputs.options import SolverOptions, require_flow_model
 from solver.inputs.wing import Wing, require_control_surfaces
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed, identity
 from solver.results.controls import ControlSweep, RollResponse
@@ -69,6 +69,7 @@ class RollInput:
         if self.flight.velocity is None:
             raise InvalidInput("flight.velocity", "is required: the airspeed to roll at")
         require_control_surfaces(self.wing, "the roll response is the ailerons'")
+        require_flow_model(self.modelled.aerodynamics)
         if not any(not surface.symmetric for surface in self.wing.control_surfaces) and (
             self.roll_rate == 0.0 and not self.free_roll
         ):
@@ -136,7 +137,9 @@ class ControlsInput:
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
         require_control_surfaces(self.wing, "effectiveness is a control surface's")
+        require_flow_model(self.modelled.aerodynamics)
         check_airspeeds(self.velocities)
+        check_over_airspeeds(self.flight.alpha, self.flight.load_factor, self.wing.mass is not None)
 
     @property
     def airspeeds(self) -> tuple[float, ...]:
@@ -160,5 +163,6 @@ class ControlsInput:
             self.flight.density,
             self.modelled,
             lift=self.flight.required_lift,
+            load_factor=self.flight.load_factor,
             progress=progress,
         )

@@ -7,16 +7,17 @@ from functools import cached_property
 
 from solver import fields
 from solver.dynamics.flutter import FlutterOptions, flutter
-from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
+from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
 from solver.inputs.options import SolverOptions
-from solver.inputs.wing import Wing
+from solver.inputs.wing import Wing, require_mass
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed
 from solver.results.flutter import FlutterResult
 from solver.results.quantities import Progress
 
 __all__ = ["FlutterInput"]
+
+_VIBRATION = "vibration and flutter need it"
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,13 +57,11 @@ class FlutterInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        if self.wing.mass is None:
-            raise InvalidInput(
-                "wing.mass",
-                "is required for vibration and flutter: mass per unit length, centre of "
-                "gravity and inertia per station",
-            )
+        require_mass(self.wing, _VIBRATION)
         check_airspeeds(self.velocities)
+        check_over_airspeeds(
+            self.flight.alpha if self.loaded else None, self.flight.load_factor, True
+        )
 
     @property
     def airspeeds(self) -> tuple[float, ...]:
@@ -85,10 +84,15 @@ class FlutterInput:
             )
         )
 
+    @property
+    def loaded(self) -> bool:
+        """Linearised about the static equilibrium at each airspeed (not the jig)."""
+        return (self.flutter or FlutterOptions()).about == "equilibrium"
+
     def run(self, progress: Progress | None = None) -> FlutterResult:
         """The answer; `progress(done, total)` as each airspeed is analysed."""
         settings = self.flutter or FlutterOptions()
-        loaded = settings.about == "equilibrium"
+        loaded = self.loaded
         return flutter(
             self.wing,
             None,
@@ -96,6 +100,7 @@ class FlutterInput:
             self.flight.density,
             alpha=self.flight.alpha if loaded else None,
             lift=self.flight.required_lift if loaded else None,
+            load_factor=self.flight.load_factor if loaded else None,
             options=self.modelled,
             flutter_options=settings,
             progress=progress,

@@ -9,7 +9,7 @@ from functools import cached_property
 from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter
-from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
+from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
 from solver.inputs.options import InitialGuess, SolverOptions
 from solver.inputs.wing import Wing
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed, identity
@@ -97,6 +97,7 @@ class SweepInput:
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
         check_airspeeds(self.velocities)
+        check_over_airspeeds(self.flight.alpha, self.flight.load_factor, self.wing.mass is not None)
 
     @property
     def airspeeds(self) -> tuple[float, ...]:

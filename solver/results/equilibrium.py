@@ -35,9 +35,17 @@ class Stations:
     axis_twist: np.ndarray = quantity(
         "deg", "twist about the elastic axis, nose-up > 0 (equal to twist when unswept)"
     )
-    shear: np.ndarray = quantity("N", "vertical shear force carried at the station")
-    bending_moment: np.ndarray = quantity("N m", "flapwise bending moment")
-    torque: np.ndarray = quantity("N m", "torque about the elastic axis")
+    shear: np.ndarray = quantity(
+        "N",
+        "vertical shear force carried at the station: the lift's, less the wing's own mass's "
+        "under the load factor (inertia relief, with wing.mass)",
+    )
+    bending_moment: np.ndarray = quantity(
+        "N m", "flapwise bending moment (the lift's, less the wing's own mass's)"
+    )
+    torque: np.ndarray = quantity(
+        "N m", "torque about the elastic axis, nose up (the lift's, with the wing's own mass's)"
+    )
     bending_stiffness: np.ndarray | None = quantity(
         "N m^2", "EI: as given, or from the spar", default=None
     )
@@ -59,6 +67,21 @@ class Stations:
         "Pa",
         "spar only (else null): von Mises stress at the outer fibre, "
         "sqrt(bending_stress^2 + 3 shear_stress^2)",
+        default=None,
+    )
+    inertial_shear: np.ndarray | None = quantity(
+        "N",
+        "the part of shear the wing's own mass carries under the load factor (negative: its "
+        "weight relieves the lift's); null without an inertial load",
+        default=None,
+    )
+    inertial_bending_moment: np.ndarray | None = quantity(
+        "N m", "the part of bending_moment the wing's own mass carries; null without", default=None
+    )
+    inertial_torque: np.ndarray | None = quantity(
+        "N m",
+        "the part of torque the wing's own mass carries (nose up where its centre of gravity "
+        "lies aft of the elastic axis); null without",
         default=None,
     )
 
@@ -158,6 +181,18 @@ class Totals:
         "-",
         "trimmed flight: the flexible wing's lift-curve slope over the rigid wing's at this "
         "angle of attack (below 1: flexibility costs lift per degree)",
+        default=None,
+    )
+    load_factor: float | None = quantity(
+        "-",
+        "the load factor n the wing's own mass carries (its weight n g against the lift: "
+        "inertia relief); null without wing.mass, or at a given alpha without a load factor",
+        default=None,
+    )
+    wing_mass: float | None = quantity(
+        "kg",
+        "the wing's own mass, both halves, spar and concentrated masses included; null "
+        "without wing.mass",
         default=None,
     )
 

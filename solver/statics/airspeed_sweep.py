@@ -8,7 +8,7 @@ import time
 from collections.abc import Sequence
 
 from solver.errors import NoEquilibrium, SolverError, numerical_failures_as
-from solver.inputs.flight import FlightCondition, OperatingPoint
+from solver.inputs.flight import FlightCondition, OperatingPoint, check_over_airspeeds
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.results.quantities import Progress
@@ -47,8 +47,17 @@ def airspeed_sweep(
     options = options or SolverOptions()
     lift = flight.required_lift
     if lift is not None:
-        return trimmed_airspeed_sweep(wing, velocities, lift, flight.density, options, progress)
+        return trimmed_airspeed_sweep(
+            wing,
+            velocities,
+            lift,
+            flight.density,
+            options,
+            progress,
+            load_factor=flight.load_factor,
+        )
     assert flight.alpha is not None
+    check_over_airspeeds(flight.alpha, flight.load_factor, wing.mass is not None)
     return _at_alpha(wing, velocities, flight.alpha, flight.density, options, progress)
 
 

@@ -82,7 +82,7 @@ def _evaluate_at_rest(system: CoupledSystem) -> AtRest:
 def at_rest(system: CoupledSystem) -> AtRest:
     """The wing of `system` at rest (cached per wing and model; alpha plays no part)."""
     key = ("at_rest", *system.model_key)
-    return cached(key, lambda: _evaluate_at_rest(system), lambda r: r.nbytes)
+    return cached(key, lambda: _evaluate_at_rest(system.unloaded), lambda r: r.nbytes)
 
 
 def is_unloaded(system: CoupledSystem, state: np.ndarray) -> bool:

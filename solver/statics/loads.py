@@ -25,6 +25,7 @@ from solver.model.geometry import (
     streamwise_twist,
 )
 from solver.results.equilibrium import Panels, Stations, Totals
+from solver.statics.inertia import InertialLoads
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import far_field_drag
 
@@ -206,9 +207,42 @@ def equilibrium_loads(
         alpha=system.alpha,
         rigid_root_bending_moment=q * rigid.root_bending_moment,
     )
+    inertia = system.inertia
+    if inertia is not None:
+        load_factor = system.load_per_q * q
+        normal = load_factor * math.cos(math.radians(system.alpha))  # `CoupledSystem._loaded`
+        stations, totals = _with_inertia(stations, totals, inertia, load_factor, normal)
     if wing.spar is not None:
         stations, totals = _with_spar(wing, wing.spar, stations, totals, safety_factor)
     return stations, panels, totals
+
+
+def _with_inertia(
+    stations: Stations, totals: Totals, inertia: InertialLoads, load_factor: float, normal: float
+) -> tuple[Stations, Totals]:
+    """The wing's own mass's loads at `load_factor` (its wing plane's share `normal`: the load
+    factor times cos(alpha)) added to the lift's: the net section loads
+    (`solver.statics.inertia`), each part reported."""
+    shear = normal * inertia.shear
+    bending = normal * inertia.bending_moment
+    torque = normal * inertia.torque
+    stations = dataclasses.replace(
+        stations,
+        shear=stations.shear + shear,
+        bending_moment=stations.bending_moment + bending,
+        torque=stations.torque + torque,
+        inertial_shear=shear,
+        inertial_bending_moment=bending,
+        inertial_torque=torque,
+    )
+    totals = dataclasses.replace(
+        totals,
+        root_bending_moment=float(stations.bending_moment[0]),
+        root_torque=float(stations.torque[0]),
+        load_factor=load_factor,
+        wing_mass=inertia.mass,
+    )
+    return stations, totals
 
 
 def _with_spar(

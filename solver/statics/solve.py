@@ -70,7 +70,9 @@ def solve(
     started = time.perf_counter()
     options = options or SolverOptions()
     if isinstance(flight, OperatingPoint):  # an answer's own point: solved at its alpha
-        flight = FlightCondition(flight.velocity, flight.alpha, flight.density)
+        flight = FlightCondition(
+            flight.velocity, flight.alpha, flight.density, load_factor=flight.load_factor
+        )
     if flight.velocity is None:
         raise InvalidInput("velocity", "is required: the airspeed to solve at")
     if isinstance(initial_guess, InitialGuess):
@@ -87,15 +89,21 @@ def solve(
     if hint is not None and initial_guess is not None:
         raise InvalidInput("initial_guess", "give an initial_guess or a hint, not both")
     point = flight.at_alpha(flight.alpha)
-    system = CoupledSystem.of(wing, point.alpha, options)
+    system = CoupledSystem.of(wing, point.alpha, options).with_inertia(
+        flight.inertial_load_factor, point.dynamic_pressure
+    )
     with numerical_failures_as(point.velocity):
         if initial_guess is not None:
             equilibrium = _from_initial_guess(system, point, initial_guess, options, started)
         else:
             equilibrium = _on_branch(system, point, options, started, _usable(system, hint))
         if options.find_fold:
-            limit = search_velocity_limit(system, point.density, point.velocity)
-            equilibrium = dataclasses.replace(equilibrium, fold=fold(system, point.density, limit))
+            # The branch of the wing at this alpha under its lift alone: its own divergence.
+            unloaded = system.unloaded
+            limit = search_velocity_limit(unloaded, point.density, point.velocity)
+            equilibrium = dataclasses.replace(
+                equilibrium, fold=fold(unloaded, point.density, limit)
+            )
     return equilibrium
 
 

@@ -11,14 +11,14 @@ packed from the wing's compiled fields by name (`solver.model.layout`).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
-from solver.errors import InvalidInput
 from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, require_flow_model
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
 from solver.model.layout import Aerodynamics, Layout
@@ -26,6 +26,7 @@ from solver.numerics.branch_points import branch_scales
 from solver.numerics.cache import cached, model_for
 from solver.numerics.compiled import CompiledModel
 from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
+from solver.statics.inertia import InertialLoads, inertial_loads
 
 __all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
 
@@ -81,6 +82,11 @@ class CoupledSystem:
     deformed_axis: bool = False
     aerodynamics: Aerodynamics = "lattice"
     flow: Flow = SYMMETRIC
+    # [1/Pa] the load factor n over the dynamic pressure q* of the flight: the wing's own mass
+    # loads the beam with n times its weight at q*, carried along the path from the jig in
+    # proportion to q (every point of the path from q = 0 to q* balances q/q* of both the lift
+    # and the inertial load; at q* the flight's). 0: no inertial load (`solver.statics.inertia`).
+    load_per_q: float = 0.0
 
     @classmethod
     def of(
@@ -97,6 +103,34 @@ class CoupledSystem:
             aerodynamics,
             flow,
         )
+
+    def with_inertia(self, load_factor: float | None, dynamic_pressure: float) -> CoupledSystem:
+        """The same wing with its own mass loaded by `load_factor` (None: none) at the flight's
+        `dynamic_pressure` [Pa]; unchanged without `wing.mass`."""
+        if load_factor is None or self.wing.mass is None:
+            return self
+        return dataclasses.replace(self, load_per_q=load_factor / dynamic_pressure)
+
+    @property
+    def unloaded(self) -> CoupledSystem:
+        """The same wing without its inertial load (what the wing at rest is cached as)."""
+        return self if self.load_per_q == 0.0 else dataclasses.replace(self, load_per_q=0.0)
+
+    @property
+    def inertia(self) -> InertialLoads | None:
+        """The wing's inertial loads at one g, when its own mass loads the beam."""
+        if self.load_per_q == 0.0:
+            return None
+        return inertial_loads(self.wing, self.layout)
+
+    def _loaded(self, r1: np.ndarray) -> np.ndarray:
+        """r1 with the wing's inertial load per unit q (the rows it adds, constant in x): the
+        apparent weight acts against the lift, normal to the flight path, so the wing's plane
+        carries cos(alpha) of it (`solver.statics.inertia`)."""
+        inertia = self.inertia
+        if inertia is None:
+            return r1
+        return r1 + self.load_per_q * math.cos(math.radians(self.alpha)) * inertia.rows
 
     def with_flow(self, flow: Flow) -> CoupledSystem:
         """The same wing and alpha with another `flow`."""
@@ -132,12 +166,7 @@ class CoupledSystem:
     def flow_model(self) -> CompiledModel:
         """The mesh's flow model (`solver.numerics.compiled`), whatever the flow: the
         lattice's (control derivatives, antisymmetric flow, roll); strip theory has none."""
-        if self.aerodynamics == "strip":
-            raise InvalidInput(
-                "options.aerodynamics",
-                "control surfaces' derivatives, roll and the antisymmetric flow are the "
-                "lattice's: strip theory answers the symmetric statics and flutter only",
-            )
+        require_flow_model(self.aerodynamics)
         return model_for(self.layout, flow=True)
 
     @cached_property
@@ -209,27 +238,43 @@ class CoupledSystem:
     def key(self) -> tuple:  # type: ignore[type-arg]
         """The canonical identity of the wing at this alpha, as modelled (-0.0 and 0.0 alike);
         the flow's only when it is not the symmetric one."""
-        key = (
+        key: tuple = (  # type: ignore[type-arg]
             self.wing.key,
             self.alpha + 0.0,
             self.chordwise,
             self.deformed_axis,
             self.aerodynamics,
         )
+        if self.load_per_q != 0.0:
+            key = (*key, "inertia", self.load_per_q)
         return key if self.flow == SYMMETRIC else (*key, self.flow.key)
 
     def evaluate(self, x: np.ndarray) -> Evaluation:
-        return self.model.evaluate(x, self.parameters)
+        evaluation = self.model.evaluate(x, self.parameters)
+        if self.load_per_q == 0.0:
+            return evaluation
+        return dataclasses.replace(evaluation, r1=self._loaded(evaluation.r1))
 
     def evaluate_with_alpha(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
-        return self.model.evaluate_with_alpha(x, self.parameters)
+        evaluation, terms = self.model.evaluate_with_alpha(x, self.parameters)
+        inertia = self.inertia
+        if inertia is None:
+            return evaluation, terms
+        # d(cos(alpha))/d(alpha) per degree: the trimmed system's exact alpha column.
+        turning = -self.load_per_q * math.sin(math.radians(self.alpha)) * math.radians(1.0)
+        return (
+            dataclasses.replace(evaluation, r1=self._loaded(evaluation.r1)),
+            dataclasses.replace(terms, r1=terms.r1 + turning * inertia.rows),
+        )
 
     def residual(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        return self.model.residual(x, self.parameters)
+        r0, r1 = self.model.residual(x, self.parameters)
+        return r0, self._loaded(r1)
 
     def residual_with_lift(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) and the lift of both halves per unit q [m^2] at x."""
-        return self.model.residual_with_lift(x, self.parameters)
+        r0, r1, lift = self.model.residual_with_lift(x, self.parameters)
+        return r0, self._loaded(r1), lift
 
     def evaluate_with_controls(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
         """The flow model's evaluation at x, with what control surfaces and roll add."""

@@ -212,7 +212,7 @@ def _trimmed_point(wing: Wing, condition: FlightCondition, options: SolverOption
     """Follow the trimmed branch from the rigid trim at q = 0 to the condition's q."""
     q = condition.dynamic_pressure
     velocity, lift = _airspeed_and_lift(condition)
-    base = CoupledSystem.of(wing, 0.0, options)
+    base = CoupledSystem.of(wing, 0.0, options).with_inertia(condition.inertial_load_factor, q)
     lift_per_q = lift / q
     rigid_alpha = _rigid_trim(base, lift_per_q, velocity)
     trimmed = _Trimmed(base, lift_per_q)
@@ -299,7 +299,9 @@ def trim(
         except NoEquilibrium as error:
             raise _past_the_limit(wing, condition, options) or error from None
         if options.find_fold:
-            limit = trimmed_divergence_limit(wing, lift, condition.density, options)
+            limit = trimmed_divergence_limit(
+                wing, lift, condition.density, options, load_factor=condition.load_factor
+            )
             equilibrium = dataclasses.replace(equilibrium, fold=limit)
     return equilibrium
 
@@ -351,8 +353,12 @@ class _PastTheAirspeeds(Exception):
         self.velocity = velocity
 
 
-def _trimmed(velocity: float, lift: float, density: float) -> FlightCondition:
-    return FlightCondition(velocity, density=density, lift=lift)
+def _trimmed(
+    velocity: float, lift: float, density: float, load_factor: float | None
+) -> FlightCondition:
+    """Trimmed to `lift` [N] at `velocity` [m/s], the wing's mass carrying `load_factor` g
+    (None: 1 g)."""
+    return FlightCondition(velocity, density=density, lift=lift, load_factor=load_factor)
 
 
 def _past_the_limit(
@@ -361,7 +367,9 @@ def _past_the_limit(
     """The answer for a trimmed condition beyond the wing's trimmed divergence limit, or None
     when it lies below the limit (or the wing has none)."""
     velocity, lift = _airspeed_and_lift(condition)
-    limit = trimmed_divergence_limit(wing, lift, condition.density, options)
+    limit = trimmed_divergence_limit(
+        wing, lift, condition.density, options, load_factor=condition.load_factor
+    )
     return _beyond(limit, velocity)
 
 
@@ -378,7 +386,12 @@ def _beyond(limit: Fold, velocity: float) -> NoEquilibrium | None:
 
 
 def trimmed_divergence_limit(
-    wing: Wing, lift: float, density: float, options: SolverOptions | None = None
+    wing: Wing,
+    lift: float,
+    density: float,
+    options: SolverOptions | None = None,
+    *,
+    load_factor: float | None = None,
 ) -> Fold:
     """Where the wing trimmed to `lift` [N] at `density` [kg/m^3] loses static stability: the
     dynamic pressure at which its trimmed equilibrium's own divergence pressure equals q.
@@ -388,11 +401,15 @@ def trimmed_divergence_limit(
     with q, so neither does the trimmed wing's divergence pressure: q passes it once). Found by
     secant iterations on q_local(q) - q from the linear divergence pressure, each point a
     trimmed solve; a deterministic function of its arguments, kept in the solver's cache, so a
-    trimmed sweep or solve asked of the same wing again finds it at once.
+    trimmed sweep or solve asked of the same wing again finds it at once. With `wing.mass`, the
+    wing's own mass weighs `load_factor` g (None: 1 g) at every trimmed point.
     """
     options = options or SolverOptions()
-    key = ("trimmed_limit", wing.key, lift + 0.0, density + 0.0, _modelled(options))
-    return cached(key, lambda: _trimmed_divergence_limit(wing, lift, density, options), _size)
+    inertia = None if wing.mass is None else (1.0 if load_factor is None else load_factor + 0.0)
+    key = ("trimmed_limit", wing.key, lift + 0.0, density + 0.0, _modelled(options), inertia)
+    return cached(
+        key, lambda: _trimmed_divergence_limit(wing, lift, density, options, load_factor), _size
+    )
 
 
 def _modelled(options: SolverOptions) -> tuple[object, ...]:
@@ -411,7 +428,7 @@ def _size(fold: Fold) -> int:
 
 
 def _trimmed_divergence_limit(
-    wing: Wing, lift: float, density: float, options: SolverOptions
+    wing: Wing, lift: float, density: float, options: SolverOptions, load_factor: float | None
 ) -> Fold:
     base = CoupledSystem.of(wing, 0.0, options)
     kind: Literal["trimmed_stability_limit"] = "trimmed_stability_limit"
@@ -433,7 +450,7 @@ def _trimmed_divergence_limit(
         if velocity > fastest:
             raise _PastTheAirspeeds(velocity)
         with numerical_failures_as(velocity):
-            point = _trimmed_point(wing, _trimmed(velocity, lift, density), options)
+            point = _trimmed_point(wing, _trimmed(velocity, lift, density, load_factor), options)
             local = point.local_divergence_pressure()
         evaluations += point.path.iterations
         return (math.inf if local is None else local) - q, point
@@ -508,6 +525,8 @@ def trimmed_airspeed_sweep(
     density: float,
     options: SolverOptions | None = None,
     progress: Progress | None = None,
+    *,
+    load_factor: float | None = None,
 ) -> AirspeedSweep:
     """The wing trimmed to `lift` [N] at each airspeed [m/s], answered in the given order.
 
@@ -521,7 +540,7 @@ def trimmed_airspeed_sweep(
     """
     started = time.perf_counter()
     options = options or SolverOptions()
-    limit = trimmed_divergence_limit(wing, lift, density, options)
+    limit = trimmed_divergence_limit(wing, lift, density, options, load_factor=load_factor)
     points: list[AirspeedPoint] = []
     for velocity in velocities:
         if progress is not None and points:
@@ -531,7 +550,7 @@ def trimmed_airspeed_sweep(
             points.append(AirspeedPoint.failed(velocity, beyond))
             continue
         try:
-            condition = _trimmed(velocity, lift, density)
+            condition = _trimmed(velocity, lift, density, load_factor)
             with numerical_failures_as(velocity):
                 try:
                     point = _trimmed_point(wing, condition, options)
