@@ -35,6 +35,14 @@ from solver.errors import (
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
 from solver.inputs.airfoil import MAX_CAMBER
+from solver.inputs.atmosphere import (
+    Air,
+    equivalent_airspeed,
+    geometric_altitude,
+    geopotential_altitude,
+    standard_atmosphere,
+    true_airspeed,
+)
 from solver.inputs.control_surfaces import ControlSurface
 from solver.inputs.design import (
     Design,
@@ -118,6 +126,12 @@ from solver.statics.trefftz import trefftz_drag
 from solver.statics.trim import rigid_trim_alpha, trim, trimmed_divergence_limit
 
 __all__ = [
+    "Air",
+    "equivalent_airspeed",
+    "geometric_altitude",
+    "geopotential_altitude",
+    "standard_atmosphere",
+    "true_airspeed",
     "FINDING_CODES",
     "FLIGHT_RULE",
     "ISA_SEA_LEVEL_DENSITY",

@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SOLVER_LAYERS: list[list[str]] = [
     ["errors"],
     ["fields"],
-    ["inputs.airfoil", "inputs.spar", "inputs.control_surfaces"],
+    ["inputs.airfoil", "inputs.spar", "inputs.control_surfaces", "inputs.atmosphere"],
     ["inputs.mass"],
     ["inputs.wing", "inputs.flight", "inputs.options"],
     ["inputs.design"],
