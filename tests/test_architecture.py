@@ -20,7 +20,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["fields"],
     ["inputs.airfoil", "inputs.spar", "inputs.control_surfaces", "inputs.atmosphere"],
     ["inputs.mass"],
-    ["inputs.wing", "inputs.flight", "inputs.options"],
+    ["inputs.wing", "inputs.flight", "inputs.options", "inputs.envelope"],
     ["inputs.design"],
     ["model.layout"],
     ["model.geometry"],
