@@ -114,6 +114,8 @@ from solver.results.sweep import (
     LinearDivergence,
     PointFailure,
 )
+from solver.sizing.cases import LoadCase, load_cases
+from solver.sizing.vn import VnDiagram, VnPoint, vn_diagram, vn_diagrams
 from solver.statics.airspeed_sweep import airspeed_sweep
 from solver.statics.divergence import (
     divergence_summary,
@@ -177,6 +179,8 @@ __all__ = [
     "FlutterInput",
     "geometric_altitude",
     "geopotential_altitude",
+    "load_cases",
+    "LoadCase",
     "RollInput",
     "FlutterOnset",
     "FlutterOptions",
@@ -240,6 +244,10 @@ __all__ = [
     "TwistDesign",
     "ValidityLimits",
     "VelocityRange",
+    "vn_diagram",
+    "vn_diagrams",
+    "VnDiagram",
+    "VnPoint",
     "WallDesign",
     "warm_up",
     "Wing",
