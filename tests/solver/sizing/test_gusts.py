@@ -68,9 +68,9 @@ def test_the_mass_ratio_is_nondimensional_and_the_alleviation_pratts_fit():
     assert (np.diff(factors) > 0).all()
 
 
-def test_a_higher_altitude_alleviates_more_at_the_same_equivalent_airspeed():
-    """Thinner air: a heavier aircraft against it (mu_g up), so K_g up: the same EAS gust at
-    the same EAS loads more. Derived gust velocities fall above 6,096 m."""
+def test_thinner_air_alleviates_less_at_the_same_equivalent_airspeed():
+    """At altitude the aircraft is heavier against the air (mu_g up), so K_g nears 0.88: the
+    same EAS gust at the same EAS loads more (until U_de falls, above 6,096 m)."""
     sea, high = (
         gusts.gust_load_factors(1200.0, 80.0, 15.24, 5.0, 1.4, density)[0]
         for density in (1.225, 0.7364)
