@@ -39,6 +39,14 @@ from solver.errors import (
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
 from solver.inputs.airfoil import MAX_CAMBER
+from solver.inputs.atmosphere import (
+    Air,
+    equivalent_airspeed,
+    geometric_altitude,
+    geopotential_altitude,
+    standard_atmosphere,
+    true_airspeed,
+)
 from solver.inputs.control_surfaces import ControlSurface
 from solver.inputs.design import (
     Design,
@@ -48,6 +56,7 @@ from solver.inputs.design import (
     TwistDesign,
     WallDesign,
 )
+from solver.inputs.envelope import FlightEnvelope
 from solver.inputs.flight import (
     FLIGHT_RULE,
     ISA_SEA_LEVEL_DENSITY,
@@ -110,6 +119,8 @@ from solver.results.sweep import (
     LinearDivergence,
     PointFailure,
 )
+from solver.sizing.cases import LoadCase, load_cases
+from solver.sizing.vn import VnDiagram, VnPoint, vn_diagram, vn_diagrams
 from solver.statics.airspeed_sweep import airspeed_sweep
 from solver.statics.divergence import (
     divergence_summary,
@@ -133,6 +144,7 @@ __all__ = [
     "OPERATION_TABLE",
     "Operation",
     "TAGS",
+    "Air",
     "airspeed_sweep",
     "AirspeedPoint",
     "AirspeedSweep",
@@ -159,16 +171,22 @@ __all__ = [
     "DivergenceOnset",
     "DivergenceSummary",
     "Equilibrium",
+    "equivalent_airspeed",
     "find_fold",
     "Finding",
     "FindingOnset",
     "fit_divergence",
     "FitDivergence",
     "FlightCondition",
+    "FlightEnvelope",
     "flutter",
     "FlutterInfo",
     "ControlsInput",
     "FlutterInput",
+    "geometric_altitude",
+    "geopotential_altitude",
+    "load_cases",
+    "LoadCase",
     "RollInput",
     "FlutterOnset",
     "FlutterOptions",
@@ -220,6 +238,7 @@ __all__ = [
     "spec_of",
     "specs",
     "Stability",
+    "standard_atmosphere",
     "Stations",
     "StationSpacing",
     "SweepInput",
@@ -228,10 +247,15 @@ __all__ = [
     "trefftz_drag",
     "trim",
     "trimmed_divergence_limit",
+    "true_airspeed",
     "TubeSpar",
     "TwistDesign",
     "ValidityLimits",
     "VelocityRange",
+    "vn_diagram",
+    "vn_diagrams",
+    "VnDiagram",
+    "VnPoint",
     "WallDesign",
     "warm_up",
     "Wing",
