@@ -11,8 +11,9 @@ the answer to a request never depends on the requests before it.
 
 from __future__ import annotations
 
+import asyncio
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Iterable, Sequence
 from typing import Any, TypeVar
 
 from pydantic import BaseModel
@@ -31,7 +32,7 @@ from app.execution.pool import (
 from app.metrics import Metrics
 from app.problems import FieldError, Problem, problem_of
 from app.schemas.derive import RequestModel
-from app.schemas.limits import panel_errors, station_and_point_errors
+from app.schemas.limits import case_errors, panel_errors, station_and_point_errors
 from app.schemas.responses import Answer
 from app.settings import Settings
 from solver import InvalidInput, SolverError
@@ -39,6 +40,23 @@ from solver import InvalidInput, SolverError
 __all__ = ["Service", "budget_of", "parts_of", "task_of"]
 
 T = TypeVar("T")
+
+# Chunks a spread input's parts are dealt into per worker running at once: enough that a slow
+# part (a case searching for its fold) is not the whole's wait, few enough that each round trip
+# carries several parts.
+_CHUNKS_PER_WORKER = 4
+
+
+async def _all(awaitables: Iterable[Awaitable[None]]) -> None:
+    """Await every one; the first failure cancels the others (and is raised as it is)."""
+    tasks = [asyncio.ensure_future(awaitable) for awaitable in awaitables]
+    try:
+        await asyncio.gather(*tasks)
+    except BaseException:
+        for task in tasks:
+            task.cancel()
+        await asyncio.gather(*tasks, return_exceptions=True)
+        raise
 
 
 # Operation name -> its row of the solver's table: its time budget and metric label.
@@ -74,7 +92,7 @@ def task_of(request: BaseModel, settings: Settings) -> Any:
         task = request.to_solver()
     except InvalidInput as error:
         raise Problem.invalid([FieldError(error.field or "body", error.reason)]) from None
-    errors = panel_errors(task, settings)
+    errors = panel_errors(task, settings) + case_errors(task, settings)
     if errors:
         raise Problem.invalid(errors)
     return task
@@ -109,8 +127,48 @@ class Service:
         if hit is not None:
             return hit
         budget = budget_of(operation, self.settings)
-        outcome = await self._in_a_worker(worker.run, task, budget, operation, progress)
+        if _TABLE[operation].spread:
+            outcome = await self._spread(operation, task, budget, progress)
+        else:
+            outcome = await self._in_a_worker(worker.run, task, budget, operation, progress)
         return self._recorded(operation, key, outcome)
+
+    async def _spread(
+        self, operation: str, task: Any, budget: float, progress: Progress | None
+    ) -> worker.Outcome:
+        """A `solver.SpreadInput`'s answer with its parts answered on every worker at once:
+        its plan made in a worker, its parts dealt round-robin into chunks (a few per worker,
+        so a slow part holds up only its own), at most the pool's capacity of chunks running,
+        the whole assembled (and serialised) in a worker from the parts' answers in order."""
+        started = time.perf_counter()
+        plan = await self._in_a_worker(worker.plan, task, budget, operation, None)
+        if isinstance(plan, worker.Outcome):
+            return plan
+        total = len(plan)
+        count = max(1, min(total, _CHUNKS_PER_WORKER * self.pool.parallelism))
+        chunks = [plan[i::count] for i in range(count)]
+        answers: list[list[Any]] = [[] for _ in chunks]
+        running = asyncio.Semaphore(self.pool.capacity)
+        done = 0
+
+        async def answer(i: int) -> None:
+            nonlocal done
+            async with running:
+                answers[i] = await self._in_a_worker(
+                    worker.run_parts, chunks[i], budget, operation, None
+                )
+            done += len(chunks[i])
+            if progress is not None:
+                progress(done, total)
+
+        await _all(answer(i) for i in range(count))
+        # Dealt round-robin: part j is chunk j % count's (j // count)th answer.
+        in_order = [answers[j % count][j // count] for j in range(total)]
+        outcome = await self._in_a_worker(
+            worker.assemble, (task, in_order), budget, operation, None
+        )
+        self.metrics.solve_seconds.labels(operation).observe(time.perf_counter() - started)
+        return outcome
 
     async def run_each(self, operation: str, tasks: Sequence[Any]) -> list[bytes | Problem]:
         """The answers of many inputs of one operation (a batch's chunk), each its response

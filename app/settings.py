@@ -106,6 +106,11 @@ class Settings(BaseSettings):
     flutter_timeout: float = Field(
         default=120.0, gt=0, description="[s] time budget of one /flutter in a worker."
     )
+    loads_timeout: float = Field(
+        default=120.0,
+        gt=0,
+        description="[s] time budget of one /loads chunk of cases in a worker (and its envelope).",
+    )
     sync_wait: float = Field(
         default=10.0,
         gt=0,
@@ -152,6 +157,15 @@ class Settings(BaseSettings):
     )
     max_sweep_points: int = Field(
         default=50, ge=1, le=MAX_ARRAY_LENGTH, description="Most velocities in one /sweep."
+    )
+    max_load_cases: int = Field(
+        default=500,
+        ge=1,
+        le=100_000,
+        description=(
+            "Most load cases in one /loads: those given and those its envelope derives "
+            "together (a 200-case envelope of the study's wing takes about a second)."
+        ),
     )
     max_body_bytes: int = Field(
         default=1_000_000, ge=1024, description="[bytes] largest request body accepted."

@@ -64,6 +64,7 @@ from solver.inputs.flight import (
     OperatingPoint,
     VelocityRange,
 )
+from solver.inputs.load_case import FlightCase
 from solver.inputs.mass import ConcentratedMass, MassModel
 from solver.inputs.options import InitialGuess, SolverOptions, ValidityLimits
 from solver.inputs.spar import Material, SparDesign, ThicknessFraction, TubeSpar
@@ -74,8 +75,9 @@ from solver.numerics.warm import is_compiled, warm_up
 from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
+from solver.operations.sizing import CaseInput, LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
-from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation
+from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation, SpreadInput
 from solver.optimization.optimize import optimize
 from solver.results.aerodynamic_forces import GeneralisedAerodynamicForces
 from solver.results.controls import (
@@ -110,6 +112,13 @@ from solver.results.flutter import (
     NoFlutter,
 )
 from solver.results.quantities import Progress
+from solver.results.sizing import (
+    CaseLoads,
+    CorrelatedLoads,
+    LoadsEnvelope,
+    SpanwiseEnvelope,
+    SparEnvelope,
+)
 from solver.results.sweep import (
     AirspeedPoint,
     AirspeedSweep,
@@ -179,6 +188,15 @@ __all__ = [
     "FitDivergence",
     "FlightCondition",
     "FlightEnvelope",
+    "FlightCase",
+    "CaseInput",
+    "CaseLoads",
+    "CorrelatedLoads",
+    "LoadsEnvelope",
+    "LoadsInput",
+    "SpreadInput",
+    "SparEnvelope",
+    "SpanwiseEnvelope",
     "flutter",
     "FlutterInfo",
     "ControlsInput",

@@ -115,6 +115,8 @@ class Limits:
 #   items        a list of `given` input dataclasses (at most one per station)
 #   velocities   airspeeds: a list, or `solver.inputs.flight.VelocityRange`
 #   deformation  N numbers (a starting deformation), each within the limits
+#   values       a list of numbers (weights, altitudes), each within the limits, at least one
+#   indices      a list of station indices (0 to N - 1), at least one
 FORMS = (
     "number",
     "integer",
@@ -129,6 +131,8 @@ FORMS = (
     "items",
     "velocities",
     "deformation",
+    "values",
+    "indices",
 )
 
 

@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import logging
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from app.schemas.responses import Answer
 from solver import InvalidInput, Progress, SolverError, warm_up
 
-__all__ = ["Outcome", "WarmReport", "run", "run_each", "warm"]
+__all__ = ["Outcome", "WarmReport", "assemble", "plan", "run", "run_each", "run_parts", "warm"]
 
 log = logging.getLogger(__name__)
 
@@ -75,3 +76,28 @@ def run_each(tasks: tuple[Any, ...], progress: Progress | None = None) -> list[O
         if progress is not None:
             progress(done, len(tasks))
     return outcomes
+
+
+def plan(task: Any) -> tuple[Any, ...] | Outcome:
+    """A spread input's parts (`solver.SpreadInput.plan`: inputs of their own), or the error
+    that says why it has none."""
+    try:
+        return tuple(task.plan)
+    except (SolverError, InvalidInput) as error:
+        return Outcome(None, error)
+
+
+def run_parts(parts: tuple[Any, ...]) -> list[Any]:
+    """The answers of some of a spread input's parts, in order, as the solver gives them (the
+    whole's answer is assembled from them: `assemble`)."""
+    return [part.run() for part in parts]
+
+
+def assemble(task_and_answers: tuple[Any, Sequence[Any]]) -> Outcome:
+    """The answer of a spread input from its parts' answers (`task.assemble(answers)`)."""
+    task, answers = task_and_answers
+    try:
+        result = task.assemble(answers)
+    except (SolverError, InvalidInput) as error:
+        return Outcome(None, error)
+    return Outcome(Answer.of(result))

@@ -37,7 +37,14 @@ Number = TypeVar("Number")
 # The service's own limits, written into the document from the settings (`app.main`).
 STATIONS_LIMIT: dict[str, Any] = {"x-flexwing-limit": "max_stations"}
 SWEEP_POINTS_LIMIT: dict[str, Any] = {"x-flexwing-limit": "max_sweep_points"}
+# The settings limit a list of items is held to (by the item's class): at most one per station
+# unless named here.
+ITEM_LIMITS: dict[str, dict[str, Any]] = {"FlightCase": {"x-flexwing-limit": "max_load_cases"}}
+# A list of values (an envelope's weights, its altitudes): at most this many.
+MAX_VALUES = 64
 
+# A flight over airspeeds (a sweep's, a flutter or controls analysis's) leaves its airspeed out.
+_OVER_AIRSPEEDS = solver.FlightCondition.AIRSPEEDS
 # Component names the published document has always used, where they differ from the
 # solver's class names: (class, way or None, without) -> name.
 _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
@@ -47,14 +54,15 @@ _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
     (solver.FlutterInput, None, ()): "FlutterRequest",
     (solver.RollInput, None, ()): "RollRequest",
     (solver.ControlsInput, None, ()): "ControlsRequest",
+    (solver.LoadsInput, None, ()): "LoadsRequest",
     (solver.SparDesign, None, ()): "TubeSpar",
     (solver.Material, None, ()): "SparMaterial",
     (solver.FlightCondition, "alpha", ()): "FlightAtAlpha",
     (solver.FlightCondition, "lift", ()): "FlightAtLift",
     (solver.FlightCondition, "weight", ()): "FlightAtWeight",
-    (solver.FlightCondition, "alpha", ("velocity",)): "SweepFlightAtAlpha",
-    (solver.FlightCondition, "lift", ("velocity",)): "SweepFlightAtLift",
-    (solver.FlightCondition, "weight", ("velocity",)): "SweepFlightAtWeight",
+    (solver.FlightCondition, "alpha", _OVER_AIRSPEEDS): "SweepFlightAtAlpha",
+    (solver.FlightCondition, "lift", _OVER_AIRSPEEDS): "SweepFlightAtLift",
+    (solver.FlightCondition, "weight", _OVER_AIRSPEEDS): "SweepFlightAtWeight",
     (solver.DesignCondition, "lift", ()): "OptimizeFlightAtLift",
     (solver.DesignCondition, "weight", ()): "OptimizeFlightAtWeight",
 }
@@ -311,8 +319,10 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
             Annotated[
                 list[_number(spec)],  # type: ignore[misc]
                 Field(min_length=solver.MIN_STATIONS, max_length=MAX_ARRAY_LENGTH),
-                # The root station is at 0 (what JSON Schema can say of an increasing list).
-                Field(json_schema_extra=STATIONS_LIMIT | {"prefixItems": [{"const": 0.0}]}),
+                # The root station is at 0 and the list increases: the description says so
+                # (JSON Schema's prefixItems could say the first, but generated clients then
+                # refuse every station after it: openapi-python-client 0.2x reads it as items).
+                Field(json_schema_extra=STATIONS_LIMIT),
                 Tag("@list"),
             ]
             | Annotated[spacing, Tag("@object")],
@@ -352,14 +362,25 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
             list[_number(spec)],  # type: ignore[misc]
             Field(max_length=MAX_ARRAY_LENGTH, json_schema_extra=STATIONS_LIMIT),
         ]
+    if form == "values":
+        return Annotated[
+            list[_number(spec)],  # type: ignore[misc]
+            Field(min_length=1, max_length=MAX_VALUES),
+        ]
+    if form == "indices":
+        return Annotated[
+            list[Annotated[int, Field(ge=0)]],
+            Field(min_length=1, max_length=MAX_ARRAY_LENGTH, json_schema_extra=STATIONS_LIMIT),
+        ]
     if form == "nested":
         assert spec.given is not None
         return request_model(spec.given, spec.without)
     if form == "items":
         assert spec.given is not None
+        limit = ITEM_LIMITS.get(spec.given.__name__, STATIONS_LIMIT)
         return Annotated[
             list[request_model(spec.given)],  # type: ignore[misc]
-            Field(max_length=MAX_ARRAY_LENGTH, json_schema_extra=STATIONS_LIMIT),
+            Field(max_length=MAX_ARRAY_LENGTH, json_schema_extra=limit),
         ]
     raise TypeError(f"no API type for input form {form!r}")
 

@@ -12,6 +12,7 @@ from solver import ISA_SEA_LEVEL_DENSITY
 
 __all__ = [
     "CONTROLS_EXAMPLES",
+    "LOADS_EXAMPLES",
     "EXAMPLES",
     "FLUTTER_EXAMPLES",
     "GOLAND_FLUTTER",
@@ -256,6 +257,50 @@ CONTROLS_EXAMPLES: dict[str, Any] = {
     },
 }
 
+STUDY_MASS: dict[str, Any] = {
+    "mass_per_length": 1.0,
+    "center_of_gravity": 0.42,
+    "inertia_per_length": 0.02,
+}
+LOADS_EXAMPLES: dict[str, Any] = {
+    "cases": {
+        "summary": "The study's wing with a light mass: a 2.5 g pull-up, a 1 g cruise, and a "
+        "rolling pull-out at 2 g",
+        "value": {
+            "wing": STUDY_WING | {"mass": STUDY_MASS, "control_surfaces": STUDY_SURFACES},
+            "cases": [
+                {
+                    "name": "pull-up",
+                    "flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 2.5},
+                },
+                {"name": "cruise", "flight": {"velocity": 14.0, "weight": 300.0}},
+                {
+                    "name": "rolling pull-out",
+                    "flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 2.0},
+                    "aileron": 5.0,
+                    "roll_rate": 0.3,
+                },
+            ],
+            "options": {"chordwise_panels": 4},
+        },
+    },
+    "envelope": {
+        "summary": "The same wing's CS-23 normal category envelope at two weights: every V-n "
+        "corner and gust point, their envelope along the span",
+        "value": {
+            "wing": STUDY_WING | {"mass": STUDY_MASS},
+            "envelope": {
+                "weights": [250.0, 300.0],
+                "altitudes": [0.0],
+                "category": "normal",
+                "cl_max": 1.2,
+                "cl_min": -0.6,
+                "cruise_speed": 12.0,
+                "dive_speed": 16.0,
+            },
+        },
+    },
+}
 # Operation name -> its examples ({name: {summary, value}}): what /docs offers, the page loads,
 # and the first of which the request model shows as its example. Every operation of
 # `solver.OPERATION_TABLE` has some (tests/app/schemas/test_examples.py).
@@ -266,4 +311,5 @@ EXAMPLES: dict[str, dict[str, Any]] = {
     "flutter": FLUTTER_EXAMPLES,
     "roll": ROLL_EXAMPLES,
     "controls": CONTROLS_EXAMPLES,
+    "loads": LOADS_EXAMPLES,
 }

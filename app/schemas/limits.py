@@ -1,9 +1,10 @@
 """The limits the service's settings set on a request, beyond what the solver's inputs state:
 most stations (FLEXWING_MAX_STATIONS), most vortex panels (FLEXWING_MAX_PANELS), most sweep
-points (FLEXWING_MAX_SWEEP_POINTS). The published schema marks them (`x-flexwing-limit`).
+points (FLEXWING_MAX_SWEEP_POINTS), most load cases (FLEXWING_MAX_LOAD_CASES). The published
+schema marks them (`x-flexwing-limit`).
 
 `station_and_point_errors` reads the request model (cheap: a batch checks every item before
-it is accepted); `panel_errors` the solver input it became.
+it is accepted); `panel_errors` and `case_errors` the solver input it became.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from app.problems import FieldError
 from app.schemas.derive import RequestModel
 from app.settings import Settings
 
-__all__ = ["panel_errors", "station_and_point_errors"]
+__all__ = ["case_errors", "panel_errors", "station_and_point_errors"]
 
 
 def _stations(model: BaseModel) -> int | None:
@@ -94,5 +95,22 @@ def panel_errors(task: Any, settings: Settings) -> list[FieldError]:
             "options.chordwise_panels",
             f"gives {strips} strips x {k} = {strips * k} panels on each half wing; at most "
             f"{settings.max_panels} are allowed (FLEXWING_MAX_PANELS)",
+        )
+    ]
+
+
+def case_errors(task: Any, settings: Settings) -> list[FieldError]:
+    """A sizing input's load cases, given and derived from its envelope together, within
+    FLEXWING_MAX_LOAD_CASES (counted without deriving them: `solver.LoadsInput.case_count`)."""
+    count = getattr(task, "case_count", None)
+    limit = settings.max_load_cases
+    if count is None or count <= limit:
+        return []
+    given = len(task.cases)
+    return [
+        FieldError(
+            "cases",
+            f"gives {count} load cases ({given} given, {count - given} from the envelope); at "
+            f"most {limit} are allowed (FLEXWING_MAX_LOAD_CASES)",
         )
     ]

@@ -35,6 +35,7 @@ __all__ = [
     "RESPONSES",
     "ControlsResponse",
     "FlutterResponse",
+    "LoadsResponse",
     "OptimizeResponse",
     "RollResponse",
     "SolveResponse",
@@ -56,6 +57,7 @@ MODEL_NAMES = {
     "OptimalDesign": "OptimizeResponse",
     "FlutterResult": "FlutterResponse",
     "ControlSweep": "ControlsResponse",
+    "LoadsEnvelope": "LoadsResponse",
     "ControlSweepPoint": "ControlsPoint",
 }
 
@@ -195,3 +197,4 @@ OptimizeResponse = RESPONSES["optimize"]
 FlutterResponse = RESPONSES["flutter"]
 RollResponse = RESPONSES["roll"]
 ControlsResponse = RESPONSES["controls"]
+LoadsResponse = RESPONSES["loads"]

@@ -58,7 +58,7 @@ class FlightEnvelope:
         ge=1e-6,
         le=1e9,
         why="a milligram to a thousand airliners",
-        form="deformation",
+        form="values",
         example=[19_620.0, 15_000.0],
     )
     cl_max: float = parameter(
@@ -92,7 +92,7 @@ class FlightEnvelope:
         ge=ALTITUDE_LIMITS.ge,
         le=ALTITUDE_LIMITS.le,
         why=ALTITUDE_LIMITS.why,
-        form="deformation",
+        form="values",
         default=(0.0,),
         example=[0.0, 3000.0],
     )

@@ -14,6 +14,8 @@ import numpy as np
 from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter
+from solver.inputs import atmosphere
+from solver.inputs.atmosphere import ALTITUDE_LIMITS
 
 __all__ = [
     "FLIGHT_RULE",
@@ -25,7 +27,7 @@ __all__ = [
     "dynamic_pressure",
     "velocity_for",
 ]
-ISA_SEA_LEVEL_DENSITY = 1.225  # [kg/m^3]
+ISA_SEA_LEVEL_DENSITY = atmosphere.SEA_LEVEL_DENSITY  # [kg/m^3] 1.225
 
 
 FLIGHT_RULE = (
@@ -56,10 +58,11 @@ class FlightCondition:
 
     velocity: float | None = parameter(
         "m/s",
-        "airspeed",
+        "true airspeed (or give equivalent_airspeed)",
         ge=0.01,
         le=1000.0,
         why="the lattice is incompressible: Mach 3 is far past it",
+        default=None,
         example=10.0,
     )
     alpha: float | None = parameter(
@@ -73,7 +76,7 @@ class FlightCondition:
     )
     density: float = parameter(
         "kg/m^3",
-        "air (or water) density",
+        "air (or water) density (or give altitude)",
         ge=1e-4,
         le=2000.0,
         why="the stratosphere to sea water (hydrofoils)",
@@ -113,7 +116,32 @@ class FlightCondition:
         example=2.5,
     )
 
-    # The ways a condition is given: each names the fields it takes beside velocity and density.
+    altitude: float | None = parameter(
+        "m",
+        "geopotential altitude in the ICAO standard atmosphere: the density is the ISA's there "
+        "(give it or density, not both)",
+        **dataclasses.asdict(ALTITUDE_LIMITS),
+        default=None,
+        kw_only=True,
+        example=3000.0,
+    )
+    equivalent_airspeed: float | None = parameter(
+        "m/s",
+        "equivalent airspeed EAS: the true airspeed is EAS sqrt(rho0 / rho), rho0 = 1.225 "
+        "kg/m^3 (give it or velocity, not both)",
+        ge=0.01,
+        le=1000.0,
+        why="the lattice is incompressible: Mach 3 is far past it",
+        default=None,
+        kw_only=True,
+        example=30.0,
+    )
+
+    # The fields that give the airspeed: a flight over airspeeds leaves them out.
+    AIRSPEEDS: ClassVar[tuple[str, ...]] = ("velocity", "equivalent_airspeed")
+
+    # The ways a condition is given: each names the fields it takes beside the airspeed and the
+    # air (velocity or equivalent_airspeed, density or altitude).
     WAYS: ClassVar[dict[str, tuple[str, ...]]] = {
         "alpha": ("alpha", "load_factor"),
         "lift": ("lift", "load_factor"),
@@ -126,6 +154,20 @@ class FlightCondition:
             value = getattr(self, name)
             if value is not None:
                 fields.number(name, value, spec)
+        if self.altitude is not None:
+            if self.density != ISA_SEA_LEVEL_DENSITY:
+                raise InvalidInput("altitude", "give density or altitude, not both")
+            object.__setattr__(self, "density", float(atmosphere.density(self.altitude)))
+        if self.equivalent_airspeed is not None:
+            if self.velocity is not None:
+                raise InvalidInput(
+                    "equivalent_airspeed", "give velocity or equivalent_airspeed, not both"
+                )
+            ratio = atmosphere.SEA_LEVEL_DENSITY / self.density
+            object.__setattr__(self, "velocity", self.equivalent_airspeed * math.sqrt(ratio))
+            fields.number(
+                "equivalent_airspeed", self.velocity, fields.spec_of(FlightCondition, "velocity")
+            )
         ways = [way for way in ("alpha", "lift", "weight") if getattr(self, way) is not None]
         if len(ways) != 1:
             raise InvalidInput("", FLIGHT_RULE)

@@ -120,7 +120,7 @@ class ControlsInput:
         "the alpha at which the wing (ailerons neutral) carries the lift",
         form="nested",
         given=FlightCondition,
-        without=("velocity",),
+        without=FlightCondition.AIRSPEEDS,
     )
     velocities: tuple[float, ...] | VelocityRange = parameter(
         "m/s",

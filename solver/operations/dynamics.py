@@ -33,7 +33,7 @@ class FlutterInput:
         "the unsteady loads, its alpha or lift the equilibrium linearised about",
         form="nested",
         given=FlightCondition,
-        without=("velocity",),
+        without=FlightCondition.AIRSPEEDS,
     )
     velocities: tuple[float, ...] | VelocityRange = parameter(
         "m/s",

@@ -80,7 +80,7 @@ class SweepInput:
         f"the flight condition at every airspeed: {FLIGHT_RULE}",
         form="nested",
         given=FlightCondition,
-        without=("velocity",),
+        without=FlightCondition.AIRSPEEDS,
     )
     velocities: tuple[float, ...] | VelocityRange = parameter(
         "m/s",

@@ -12,6 +12,7 @@ type, its physics and one row here.
 from __future__ import annotations
 
 import typing
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, Protocol
 
@@ -19,12 +20,20 @@ from solver.errors import ConvergenceError, InfeasibleDesign, NoEquilibrium, Sol
 from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
+from solver.operations.sizing import LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.results.quantities import Progress
 
-__all__ = ["OPERATIONS", "OPERATION_TABLE", "TAGS", "Operation", "OperationInput"]
+__all__ = [
+    "OPERATIONS",
+    "OPERATION_TABLE",
+    "TAGS",
+    "Operation",
+    "OperationInput",
+    "SpreadInput",
+]
 
-Budget = Literal["solve", "sweep", "optimize", "flutter"]
+Budget = Literal["solve", "sweep", "optimize", "flutter", "loads"]
 
 # The kinds of question, in the order the documentation lists them: tag -> what it is.
 TAGS: dict[str, str] = {
@@ -32,6 +41,7 @@ TAGS: dict[str, str] = {
     "design": "Optimise a wing's jig twist and spar.",
     "dynamics": "Vibration modes and flutter.",
     "controls": "Flaps and ailerons: roll, control effectiveness, reversal.",
+    "loads": "Sizing loads: load cases, the flight and loads envelopes.",
 }
 
 
@@ -45,6 +55,17 @@ class OperationInput(Protocol):
     def run(self, progress: Progress | None = None) -> Any: ...
 
 
+class SpreadInput(OperationInput, Protocol):
+    """An input whose parts are inputs of their own, answered apart: `plan` (its row's
+    `parts`) lists them, each answered by its `run()` in any process, and `assemble` answers
+    the whole from their answers, in `plan`'s order (what `run()` does in one process)."""
+
+    @property
+    def plan(self) -> tuple[Any, ...]: ...
+
+    def assemble(self, answers: Sequence[Any]) -> Any: ...
+
+
 @dataclass(frozen=True)
 class Operation:
     """One operation: `input` answers it (`input(...).run(progress)`).
@@ -53,9 +74,10 @@ class Operation:
     documentation); refusals: besides invalid input, how it answers what has no answer (the
     422 responses' description); budget: which time budget it runs in (the service's
     FLEXWING_<BUDGET>_TIMEOUT); answered: what a success is counted as; parts: the input's
-    attribute whose length its progress counts (None: one part); answers: the typed domain
-    answers (solver errors) it can give instead of a result; requires: the optional parts of
-    its input it cannot answer without (dotted paths: "wing.mass").
+    attribute whose length (or value: a count) its progress counts (None: one part); answers:
+    the typed domain answers (solver errors) it can give instead of a result; requires: the
+    optional parts of its input it cannot answer without (dotted paths: "wing.mass"); spread:
+    its input is a `SpreadInput`, whose parts the service answers on several workers at once.
     """
 
     name: str
@@ -69,6 +91,7 @@ class Operation:
     parts: str | None = None
     answers: tuple[type[SolverError], ...] = (NoEquilibrium, ConvergenceError)
     requires: tuple[str, ...] = ()
+    spread: bool = False
 
     @property
     def result(self) -> type:
@@ -78,7 +101,10 @@ class Operation:
 
     def count_parts(self, task: object) -> int:
         """[-] how many parts `task` (an `input`) reports progress in."""
-        return 1 if self.parts is None else len(getattr(task, self.parts))
+        if self.parts is None:
+            return 1
+        parts = getattr(task, self.parts)
+        return parts if isinstance(parts, int) else len(parts)
 
 
 _PAST_THE_FOLD = (
@@ -217,6 +243,30 @@ answered in its point (`status` no_equilibrium).""",
         parts="airspeeds",
         answers=(),
         requires=("wing.control_surfaces",),
+    ),
+    Operation(
+        name="loads",
+        input=LoadsInput,
+        tag="loads",
+        summary="Sizing loads: every load case of the flexible wing and their envelope",
+        description="""Every load case flown as one equilibrium of the flexible wing, trimmed, the
+wing's own mass (`wing.mass`) weighing n g against the lift (inertia relief): the cases given
+(a weight and load factor, an airspeed and an altitude; a rolling pull-out with the ailerons and
+a roll rate), and those a flight envelope derives (the corners and gust points of its V-n
+diagrams, CS-23 or CS-25, at every weight and altitude).
+
+Answers each case's loads or why it has none (past divergence, past the lift it can carry: a
+typed status for that case, never a failure of the others), the envelope along the span (the
+largest and smallest shear, bending moment and torque, each with its case), the correlated
+loads at chosen stations with their convex hull, a tube spar's margins at limit and ultimate
+load (1.5), and the V-n diagrams. The cases run spread over the workers.""",
+        refusals="more cases than FLEXWING_MAX_LOAD_CASES (given and derived) is invalid "
+        "input naming `cases`; a case that cannot be flown is answered in its place (`status`).",
+        budget="loads",
+        answered="completed",
+        parts="case_count",
+        answers=(),
+        spread=True,
     ),
 )
 

@@ -67,6 +67,7 @@ __all__ = [
     "MAX_TRIM_ALPHA",
     "rigid_trim_alpha",
     "trim",
+    "zero_lift_alpha",
     "trimmed_airspeed_sweep",
     "trimmed_divergence_limit",
 ]
@@ -132,6 +133,16 @@ def rigid_trim_alpha(
     velocity, lift = _airspeed_and_lift(condition)
     with numerical_failures_as(velocity):
         return _rigid_trim(base, lift / condition.dynamic_pressure, velocity)
+
+
+def zero_lift_alpha(
+    wing: Wing, options: SolverOptions | None = None, velocity: float = 0.0
+) -> float:
+    """[deg] the angle of attack at which the rigid jig carries no lift (the lift of
+    `rigid_trim_alpha`, in the wind's axes); `velocity` [m/s] only names the flight in errors."""
+    base = CoupledSystem.of(wing, 0.0, options or SolverOptions())
+    with numerical_failures_as(velocity):
+        return _rigid_trim(base, 0.0, velocity)
 
 
 def _airspeed_and_lift(condition: FlightCondition) -> tuple[float, float]:

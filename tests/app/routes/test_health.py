@@ -14,6 +14,7 @@ from pathlib import Path
 import httpx
 import pytest
 
+import solver
 from openapi.generate import PATH as OPENAPI_PATH
 from openapi.generate import render
 from tests import study
@@ -60,10 +61,18 @@ def test_committed_openapi_is_current() -> None:
     assert OPENAPI_PATH.read_text() == render(), "stale: run python -m openapi.generate"
 
 
+def test_every_component_has_a_chosen_name() -> None:
+    """Never pydantic's disambiguation of two models of one name (module__Class__1): a client
+    generated from the document would name its classes so, and rename them at the next."""
+    schema = json.loads(OPENAPI_PATH.read_text())
+    names = list(schema["components"]["schemas"])
+    assert not [name for name in names if "__" in name]
+
+
 def test_operation_ids_are_clean() -> None:
     schema = json.loads(OPENAPI_PATH.read_text())
     ids = {op["operationId"] for path in schema["paths"].values() for op in path.values()}
-    assert ids == {"solve", "sweep", "optimize", "flutter", "roll", "controls"} | {
+    assert ids == {operation.name for operation in solver.OPERATION_TABLE} | {
         "healthz",
         "readyz",
         "submit_job",

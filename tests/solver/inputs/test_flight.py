@@ -39,3 +39,32 @@ def test_an_invalid_flight_condition_names_the_field(velocity, alpha, density, f
     with pytest.raises(InvalidInput) as raised:
         solver.FlightCondition(velocity=velocity, alpha=alpha, density=density)
     assert raised.value.field == field
+
+
+def test_a_flight_by_altitude_and_equivalent_airspeed_is_the_isas_air_and_true_airspeed():
+    """At 3,000 m (ISA: 0.90912 kg/m^3, ICAO Doc 7488) 30 m/s EAS is the dynamic pressure of
+    30 m/s at sea level, exactly as rho V_TAS^2 = rho0 V_EAS^2."""
+    flight = solver.FlightCondition(
+        equivalent_airspeed=30.0, altitude=3000.0, weight=1000.0, load_factor=2.0
+    )
+    assert flight.density == pytest.approx(0.90912, rel=1e-5)
+    assert flight.dynamic_pressure == pytest.approx(0.5 * 1.225 * 30.0**2, rel=1e-14)
+    assert flight.velocity == pytest.approx(30.0 * math.sqrt(1.225 / flight.density), rel=1e-15)
+    sea_level = solver.FlightCondition(equivalent_airspeed=30.0, alpha=5.0)
+    assert sea_level.velocity == 30.0 and sea_level.density == 1.225
+
+
+@pytest.mark.parametrize(
+    ("given", "field"),
+    [
+        ({"velocity": 30.0, "equivalent_airspeed": 30.0, "alpha": 5.0}, "equivalent_airspeed"),
+        ({"velocity": 30.0, "density": 1.0, "altitude": 1000.0, "alpha": 5.0}, "altitude"),
+        ({"equivalent_airspeed": 900.0, "altitude": 30000.0, "alpha": 5.0}, "equivalent_airspeed"),
+        ({"velocity": 30.0, "altitude": 90000.0, "alpha": 5.0}, "altitude"),
+    ],
+    ids=["both-airspeeds", "both-airs", "past-1000-true", "past-the-atmosphere"],
+)
+def test_an_airspeed_or_an_air_given_twice_or_out_of_range_names_the_field(given, field):
+    with pytest.raises(InvalidInput) as raised:
+        solver.FlightCondition(**given)
+    assert raised.value.field == field
