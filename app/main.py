@@ -20,6 +20,7 @@ from fastapi.staticfiles import StaticFiles
 from app import __version__, security
 from app.execution.pool import WorkerPool
 from app.jobs import JobManager
+from app.jobs.store import Store
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
 from app.routes import controls, flutter, health, optimize, page, solve, sweep
@@ -188,7 +189,10 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     metrics = Metrics()
     pool = WorkerPool(settings, metrics)
     service = Service(settings, pool, metrics)
-    jobs = JobManager(settings, service, metrics)
+    # The jobs, and with replicas (PostgreSQL) the API keys and rate-limit buckets: opened in
+    # the lifespan; an unreachable database is retried there, not a failed start (/readyz).
+    store = Store.of(settings.database_url, settings.jobs_db, settings.retry_after)
+    jobs = JobManager(settings, service, metrics, store=store)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
