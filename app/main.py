@@ -238,7 +238,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_middleware(
         BodyLimitMiddleware, limit=settings.max_body_bytes, path_limits={"/jobs": job_body}
     )
-    security.install_access(app, settings, metrics)  # API keys and rate limits, inside the metrics
+    # API keys and rate limits, inside the metrics
+    security.install_access(app, settings, metrics, store)
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     security.install_headers(app, settings)  # CORS and security headers on every response
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
