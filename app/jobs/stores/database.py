@@ -13,7 +13,7 @@ in either dialect (`app.jobs.stores.dialects`).
 When the database cannot be reached (at the start, or lost mid-run: the connection breaks) the
 store is *unavailable*: reads are refused at once with 503 /problems/database-unavailable
 (Retry-After), writes are kept in memory, in order, and the thread connects again with a growing
-pause (0.25 s to 5 s). Once it is back, the kept writes run first, then everything else: every
+pause (0.1 s to 2 s). Once it is back, the kept writes run first, then everything else: every
 write is idempotent (an insert of a row that is there already does nothing, an update sets
 values), so a batch whose commit may or may not have reached the database before the connection
 broke is safely run again. An operation that fails for another reason (a bug, a constraint)
@@ -51,7 +51,7 @@ PROBLEM_TYPES["database-unavailable"] = ProblemType(
 )
 
 _BATCH_LIMIT = 512  # queued operations run under one commit at most
-_FIRST_RETRY, _LAST_RETRY = 0.25, 5.0  # [s] pauses between connection attempts
+_FIRST_RETRY, _LAST_RETRY = 0.1, 2.0  # [s] pauses between connection attempts
 _STOP = object()
 
 
