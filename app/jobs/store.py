@@ -66,6 +66,12 @@ class Store:
     def __init__(self, dialect: Dialect, *, retry_after: int = 1) -> None:
         self.dialect = dialect
         self.database = Database(dialect, migrate, retry_after=retry_after)
+        # Claims and rate-limit buckets on a connection of their own: never queued behind a
+        # batch's item writes, and their commits do not wait for the disk. Losing one with the
+        # database server's last moments costs a retry, never a job: a claim not kept leaves
+        # the job claimable again (everything a job writes is fenced by its claim), a token
+        # not kept a request's worth of limit.
+        self.coordination = Database(dialect, migrate, retry_after=retry_after, durable=False)
 
     @classmethod
     def of(cls, database_url: str | None, jobs_db: Path, retry_after: int = 1) -> Store:
@@ -94,8 +100,10 @@ class Store:
 
     async def open(self) -> None:
         await self.database.open()
+        await self.coordination.open()
 
     async def close(self) -> None:
+        await self.coordination.close()
         await self.database.close()
 
     @property
@@ -161,10 +169,12 @@ class Store:
     async def claim(self, owner: str, now: float, lease: float) -> Claim | None:
         """The oldest job that is queued, or running under an expired lease, now `owner`'s
         until `now + lease`, with its request and (a batch's) items answered so far; None."""
-        return await self.database.read(_claim, owner, now, lease)
+        return await self.coordination.read(_claim, owner, now, lease)
 
     async def renew(self, owner: str, until: float) -> dict[str, bool]:
         """Extend `owner`'s leases to `until`: {job id: cancel asked for} of those it holds."""
+        # On the jobs' own connection: after every job this replica stored (an adopted call's
+        # insert is queued there), so a renewal never misses one of its jobs.
         return await self.database.read(_renew, owner, until)
 
     async def cancel_queued(self, job_id: str, principal: str, now: float, expires: float) -> bool:
@@ -180,11 +190,11 @@ class Store:
     async def take_token(self, client: str, rate: float, burst: int, now: float) -> float:
         """One request of `client` from its token bucket (`burst` at most, refilled at `rate`
         [1/s]): 0.0 if it may go ahead, else [s] until its next token."""
-        return await self.database.read(_take_token, client, rate, burst, now, durable=False)
+        return await self.coordination.read(_take_token, client, rate, burst, now)
 
     async def forget_buckets(self, before: float) -> None:
         """Drop buckets untouched since `before` (full again by then: as new ones)."""
-        await self.database.read(_forget_buckets, before, durable=False)
+        await self.coordination.read(_forget_buckets, before)
 
     # ------------------------------------------------------------------------- API keys
 

@@ -99,7 +99,7 @@ class SharedBuckets:
 
     async def take(self, client: str) -> float:
         """As `TokenBuckets.take`, across every replica."""
-        if self.store.available:
+        if self.store.coordination.available:
             try:
                 wait = await self.store.take_token(client, self.rate, self.burst, self._clock())
             except Problem:

@@ -85,7 +85,6 @@ class _Task:
     operation: Callable[..., Any]
     args: tuple[Any, ...]
     future: concurrent.futures.Future[Any] | None  # None: a write
-    durable: bool = True  # False: may be lost with the database server's last moments
     outcome: tuple[bool, Any] | None = field(default=None)  # (ok, value or error)
 
 
@@ -98,8 +97,10 @@ class Database:
         prepare: Callable[[Session], None],
         *,
         retry_after: int = 1,
+        durable: bool = True,
     ) -> None:
         self.dialect = dialect
+        self.durable = durable  # False: commits need not wait for the database's disk
         self.name = dialect.name
         self._prepare = prepare
         self.retry_after = retry_after
@@ -136,18 +137,16 @@ class Database:
         logged."""
         self._tasks.put(_Task(operation, args, None))
 
-    async def read(self, operation: Callable[..., T], *args: Any, durable: bool = True) -> T:
+    async def read(self, operation: Callable[..., T], *args: Any) -> T:
         """Run `operation(session, *args)` after everything queued before it and commit; 503
         not-ready when the store is not open (an app without its lifespan), 503
-        database-unavailable when the database cannot be reached. `durable=False`: a batch of
-        only such reads need not wait for the database's disk (PostgreSQL's synchronous_commit
-        off: rate-limit buckets)."""
+        database-unavailable when the database cannot be reached."""
         if self._thread is None:
             raise Problem("not-ready", "the jobs database is not open")
         if not self.available:
             raise unavailable(self.name, self.reason, self.retry_after)
         future: concurrent.futures.Future[T] = concurrent.futures.Future()
-        self._tasks.put(_Task(operation, args, future, durable))
+        self._tasks.put(_Task(operation, args, future))
         try:
             return await asyncio.wrap_future(future)
         except Unavailable:
@@ -192,8 +191,11 @@ class Database:
             self._set_away(self.dialect.describe(error))
             return None
         try:
-            self._prepare(Session(connection, self.dialect))
-            connection.commit()
+            session = Session(connection, self.dialect)
+            self._prepare(session)
+            self.dialect.commit(connection)
+            if not self.durable:
+                self.dialect.relax_commit(session)
         except Exception as error:
             log.exception("jobs database %s: preparing the schema failed", self.name)
             self.dialect.close(connection)
@@ -257,18 +259,19 @@ class Database:
                     _hand_back(task)
                 return False
             # One operation failed (not the connection): each alone, in its own transaction.
-            connection.rollback()
+            self.dialect.rollback(connection)
             for task in batch:
+                self.dialect.begin(connection, 2)
                 if self._run(session, task, quiet=False):
                     try:
-                        connection.commit()
+                        self.dialect.commit(connection)
                     except Exception as error:
                         if self.dialect.broken(connection, error):
                             raise
-                        connection.rollback()
+                        self.dialect.rollback(connection)
                         task.outcome = (False, error)
                 else:
-                    connection.rollback()
+                    self.dialect.rollback(connection)
                 _hand_back(task)
         except Exception as error:
             if not self.dialect.broken(connection, error):
@@ -284,12 +287,11 @@ class Database:
         """Every operation of `batch` in one transaction, committed; False (nothing committed)
         when one of them failed."""
         try:
-            if batch and not any(task.durable for task in batch):
-                self.dialect.relax_commit(session)
+            self.dialect.begin(session.connection, len(batch))
             for task in batch:
                 if not self._run(session, task, quiet=True):
                     return False
-            session.connection.commit()
+            self.dialect.commit(session.connection)
         except Exception as error:
             if self.dialect.broken(session.connection, error):
                 raise

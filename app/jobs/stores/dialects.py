@@ -31,6 +31,9 @@ class Dialect(Protocol):
 
     def connect(self) -> Any: ...
     def close(self, connection: Any) -> None: ...
+    def begin(self, connection: Any, operations: int) -> None: ...
+    def commit(self, connection: Any) -> None: ...
+    def rollback(self, connection: Any) -> None: ...
     def sql(self, text: str) -> str: ...
     def broken(self, connection: Any, error: BaseException) -> bool: ...
     def describe(self, error: BaseException) -> str: ...
@@ -61,6 +64,15 @@ class SQLite:
 
     def close(self, connection: Any) -> None:
         connection.close()
+
+    def begin(self, connection: Any, operations: int) -> None:
+        pass  # the sqlite3 module begins a transaction before the first write
+
+    def commit(self, connection: Any) -> None:
+        connection.commit()
+
+    def rollback(self, connection: Any) -> None:
+        connection.rollback()
 
     def sql(self, text: str) -> str:
         return text
@@ -124,11 +136,25 @@ class PostgreSQL:
 
     def connect(self) -> psycopg.Connection[Any]:
         parameters: dict[str, Any] = _POSTGRES_DEFAULTS | conninfo_to_dict(self.url)
-        return psycopg.connect(**parameters)
+        # Autocommit: a lone operation is one round trip (no BEGIN, no COMMIT); a batch of
+        # several opens its transaction itself (`begin`).
+        return psycopg.connect(autocommit=True, **parameters)
 
     def close(self, connection: Any) -> None:
         with contextlib.suppress(psycopg.Error):
             connection.close()
+
+    def begin(self, connection: Any, operations: int) -> None:
+        if operations > 1:
+            connection.execute("BEGIN")
+
+    def commit(self, connection: Any) -> None:
+        if connection.info.transaction_status != psycopg.pq.TransactionStatus.IDLE:
+            connection.execute("COMMIT")
+
+    def rollback(self, connection: Any) -> None:
+        if connection.info.transaction_status != psycopg.pq.TransactionStatus.IDLE:
+            connection.execute("ROLLBACK")
 
     def sql(self, text: str) -> str:
         return _pyformat(text)
@@ -143,11 +169,13 @@ class PostgreSQL:
         return text[0] if text else type(error).__name__
 
     def relax_commit(self, session: Any) -> None:
-        # Only for batches of rate-limit buckets: a bucket lost with the server's last
-        # moments is a few requests' tokens, and the request does not wait for its disk.
-        session.execute("SET LOCAL synchronous_commit TO OFF")
+        # Only on the store's coordination connection (claims, leases, rate-limit buckets):
+        # see `app.jobs.store.Store`.
+        session.execute("SET synchronous_commit TO OFF")
 
     def lock_schema(self, session: Any) -> None:
+        if session.connection.info.transaction_status == psycopg.pq.TransactionStatus.IDLE:
+            session.execute("BEGIN")
         session.execute("SELECT pg_advisory_xact_lock(?)", (_SCHEMA_LOCK,))
 
     def columns(self, session: Any, table: str) -> set[str]:
