@@ -30,9 +30,9 @@ import logging
 import secrets
 import time
 from collections.abc import Awaitable, Callable, Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
+from app.jobs.live import LiveJob, RunContext
 from app.jobs.models import FINISHED_STATES, JOB_STATES
 from app.jobs.operations import OPERATIONS, Operation
 from app.jobs.signals import on_shutdown_signals
@@ -42,7 +42,7 @@ from app.problems import PROBLEM_TYPES, FieldError, Problem, ProblemType, proble
 from app.service import Service
 from app.settings import Settings
 
-__all__ = ["JobManager", "LiveJob"]
+__all__ = ["JobManager", "LiveJob"]  # LiveJob: app.jobs.live
 
 log = logging.getLogger(__name__)
 
@@ -76,90 +76,6 @@ def _prefixed(problem: Problem, prefix: str) -> Problem:
     renamed = Problem.invalid(errors)
     renamed.extensions["error_count"] = problem.extensions.get("error_count", len(errors))
     return renamed
-
-
-@dataclass(eq=False)
-class LiveJob:
-    """A job running in this replica, in memory (`row()` is its store row)."""
-
-    id: str
-    operation: Operation
-    request: Any  # the validated request model; None once finished, or adopted
-    created: float  # [s since the epoch]
-    total: int
-    status: str = "running"
-    started: float | None = None
-    finished: float | None = None
-    expires: float | None = None
-    done: int = 0
-    problems: int = 0
-    result: str | None = None  # JSON text
-    problem: dict[str, Any] | None = None
-    task: asyncio.Task[None] | None = None
-    cancel_requested: bool = False
-    releasing: bool = False  # the replica stops: back to the queue
-    lease_lost: bool = False  # another replica holds it now: record nothing more
-    principal: str = ""  # its API key (app.security.keys.ApiKey.principal); "" without keys
-    answers: int = 0  # batch items answered: their order in the store
-    answered: frozenset[int] = frozenset()  # items answered before this replica took it up
-    progress_written: float = 0.0  # [s, monotonic]
-    changed: asyncio.Event = field(default_factory=asyncio.Event)
-
-    def row(self) -> JobRow:
-        return {
-            "id": self.id,
-            "operation": self.operation.name,
-            "status": self.status,
-            "principal": self.principal,
-            "created": self.created,
-            "started": self.started,
-            "finished": self.finished,
-            "expires": self.expires,
-            "done": self.done,
-            "total": self.total,
-            "problems": self.problems,
-            "problem": self.problem,
-        }
-
-    def notify(self) -> None:
-        """Wake whoever waits for a change (event streams)."""
-        self.changed.set()
-        self.changed = asyncio.Event()
-
-
-@dataclass
-class _Context:
-    """An operation's `operations.JobContext`: the service, how many items to keep in flight,
-    and a place to record batch items."""
-
-    manager: JobManager
-    job: LiveJob
-
-    @property
-    def service(self) -> Service:
-        return self.manager.service
-
-    @property
-    def lanes(self) -> int:
-        return self.manager.service.pool.capacity
-
-    @property
-    def parallelism(self) -> int:
-        return self.manager.service.pool.parallelism
-
-    @property
-    def chunk_seconds(self) -> float:
-        return self.manager.service.pool.chunk_seconds
-
-    def item_answered(self, index: int, ok: bool, line: str) -> None:
-        self.manager.item_answered(self.job, index, ok, line)
-
-    @property
-    def answered(self) -> frozenset[int]:
-        return self.job.answered
-
-    def progress(self, done: int, total: int) -> None:
-        self.manager.progressed(self.job, done)
 
 
 class JobManager:
@@ -340,23 +256,7 @@ class JobManager:
         self._count("queued" if claim["attempts"] == 1 else None, "running")
         operation = self.operations.get(claim["operation"])
         request = self._submitted.pop(job_id, None)
-        job = LiveJob(
-            job_id,
-            operation or _unknown(claim["operation"]),
-            request,
-            claim["created"],
-            claim["total"],
-            started=claim["started"],
-            done=claim["done"],
-            problems=claim["problems"],
-            principal=claim["principal"],
-            answers=claim["answers"],
-            answered=frozenset(claim["answered"]),
-            cancel_requested=bool(claim["cancel_requested"]),
-        )
-        if job.answered:  # a batch taken up: its progress is what was recorded
-            job.done = len(job.answered)
-            job.problems = sum(not ok for ok in claim["answered"].values())
+        job = LiveJob.claimed(claim, operation, request)
         self._live[job_id] = job
         why = None
         if operation is None:
@@ -382,7 +282,8 @@ class JobManager:
         job.notify()
 
     async def _run(self, job: LiveJob) -> None:
-        await self._settle(job, lambda: job.operation.run(_Context(self, job), job.request))
+        context = RunContext(self, job)
+        await self._settle(job, lambda: job.operation.run(context, job.request))
 
     async def _settle(
         self,
@@ -462,7 +363,7 @@ class JobManager:
         job.expires = job.finished + self.settings.job_retention
         job.result, job.problem, job.request = result, problem, None
         fields = job.row() | {"result": result, "lease_expires": None, "request": None}
-        fields["problem"] = _problem_text(problem)
+        fields["problem"] = None if problem is None else json.dumps(problem)
         for name in ("id", "operation", "principal", "created", "total"):
             del fields[name]
         self.store.update_job(job.id, self.owner, fields)
@@ -631,24 +532,3 @@ class JobManager:
             if state is not None:
                 self._counts[state] = max(0, self._counts.get(state, 0) + change)
                 self.metrics.jobs.labels(state).set(self._counts[state])
-
-
-def _problem_text(problem: dict[str, Any] | None) -> str | None:
-    return None if problem is None else json.dumps(problem)
-
-
-def _unknown(name: str) -> Operation:
-    """A stand-in for an operation this replica does not know (a newer replica's)."""
-
-    async def run(context: Any, request: Any) -> None:
-        return None
-
-    return Operation(
-        name=name,
-        summary="unknown",
-        request_model=object,  # type: ignore[arg-type]
-        request_description="",
-        units=lambda request: 1,
-        check=lambda request, settings: None,
-        run=run,
-    )
