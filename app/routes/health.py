@@ -53,7 +53,7 @@ async def readyz(request: Request) -> Any:
         )
     if store.available:
         detail += f"; jobs database {store.name}"
-    else:
+    elif store.is_open:  # (not open: the app has not started, which "not started" says)
         detail += f"; jobs database {store.name} unavailable: {store.reason}"
     ready = pool.ready and store.available
     body = ReadyResponse(
