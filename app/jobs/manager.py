@@ -242,6 +242,9 @@ class JobManager:
                     claim = await self.store.claim(self.owner, time.time(), self.settings.job_lease)
                 except Problem:
                     claim = None  # the database went away: wait for it
+                except Exception:
+                    log.exception("claiming a job failed")
+                    claim = None
             if claim is None:
                 with contextlib.suppress(TimeoutError):
                     await asyncio.wait_for(self._wake.wait(), self.settings.job_poll_interval)
@@ -488,6 +491,9 @@ class JobManager:
             try:
                 held = await self.store.renew(self.owner, time.time() + self.settings.job_lease)
             except Problem:
+                continue  # unreachable from here: past the lease, the fences keep us out
+            except Exception:
+                log.exception("renewing the leases failed")
                 continue
             for job_id, job in list(self._live.items()):
                 if job.task is None or job.task.done():
