@@ -10,7 +10,8 @@ Deployments, each real uvicorn processes on loopback, with the same two worker p
   alternating between them as a load balancer would.
 
 Both run with a rate limit that never refuses (FLEXWING_RATE_LIMIT=1e6): the shared deployment
-consults its token bucket in PostgreSQL on every request, the single one in memory.
+consults its token bucket in PostgreSQL on every request, the single one in memory; the
+replicas' /solve is measured once more without a rate limit, which isolates the bucket's cost.
 
 Measured in each deployment:
 
@@ -305,6 +306,20 @@ def main() -> None:
                 shared = deployment(
                     "two replicas, PostgreSQL", [a_url, b_url], [a_pid, b_pid], cluster, args
                 )
+            # The same replicas without a rate limit: what the shared bucket adds to /solve.
+            unlimited_env = {k: v for k, v in replica_env.items() if "RATE" not in k}
+            with (
+                service(tmp, unlimited_env) as (a_url, _),
+                service(tmp, unlimited_env) as (
+                    b_url,
+                    _,
+                ),
+            ):
+                solve_latencies([a_url, b_url], 20, "unlimited-warm")
+                unlimited = solve_latencies([a_url, b_url], args.solves, "unlimited")
+            print("\ntwo replicas, PostgreSQL, no rate limit")
+            print(f"  {'/solve p50 ms':22s} {unlimited[0]:9.2f}")
+            print(f"  {'/solve p90 ms':22s} {unlimited[1]:9.2f}")
         finally:
             cluster.remove()
     print("\ntwo replicas / one service")
