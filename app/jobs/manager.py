@@ -482,21 +482,31 @@ class JobManager:
     # -------------------------------------------------------------- housekeeping, metrics
 
     async def _keep_leases(self) -> None:
-        """Renew this replica's leases every `_heartbeat` s; cancel here what was asked to be
-        cancelled elsewhere, and stop (unrecorded) what another replica has taken over."""
+        """Renew the leases of the jobs this replica runs every `_heartbeat` s; cancel here what
+        was asked to be cancelled elsewhere, and stop (unrecorded) what another replica has
+        taken over. Only the jobs running before the renewal was asked are judged by it (a job
+        claimed meanwhile is not in its answer), and only those are renewed (a job given up
+        here is left to expire)."""
         while True:
             await asyncio.sleep(self._heartbeat)
-            if not self._live or not self.store.available:
+            running = [
+                job_id
+                for job_id, job in self._live.items()
+                if job.task is not None and not job.task.done()
+            ]
+            if not running or not self.store.available:
                 continue
+            until = time.time() + self.settings.job_lease
             try:
-                held = await self.store.renew(self.owner, time.time() + self.settings.job_lease)
+                held = await self.store.renew(self.owner, until, running)
             except Problem:
                 continue  # unreachable from here: past the lease, the fences keep us out
             except Exception:
                 log.exception("renewing the leases failed")
                 continue
-            for job_id, job in list(self._live.items()):
-                if job.task is None or job.task.done():
+            for job_id in running:
+                job = self._live.get(job_id)
+                if job is None or job.task is None or job.task.done():
                     continue
                 if job_id not in held:
                     log.warning("job %s: its lease passed to another replica", job_id)

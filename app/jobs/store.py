@@ -171,11 +171,12 @@ class Store:
         until `now + lease`, with its request and (a batch's) items answered so far; None."""
         return await self.coordination.read(_claim, owner, now, lease)
 
-    async def renew(self, owner: str, until: float) -> dict[str, bool]:
-        """Extend `owner`'s leases to `until`: {job id: cancel asked for} of those it holds."""
+    async def renew(self, owner: str, until: float, job_ids: list[str]) -> dict[str, bool]:
+        """Extend `owner`'s leases of `job_ids` (the jobs it runs) to `until`: {job id: cancel
+        asked for} of those it still holds."""
         # On the jobs' own connection: after every job this replica stored (an adopted call's
         # insert is queued there), so a renewal never misses one of its jobs.
-        return await self.database.read(_renew, owner, until)
+        return await self.database.read(_renew, owner, until, job_ids)
 
     async def cancel_queued(self, job_id: str, principal: str, now: float, expires: float) -> bool:
         """Cancel a job of `principal` that no replica runs (queued, or its lease expired)."""
@@ -339,11 +340,14 @@ def _claim(session: Session, owner: str, now: float, lease: float) -> Claim | No
     return claim
 
 
-def _renew(session: Session, owner: str, until: float) -> dict[str, bool]:
+def _renew(session: Session, owner: str, until: float, job_ids: list[str]) -> dict[str, bool]:
+    if not job_ids:
+        return {}
+    marks = ", ".join("?" for _ in job_ids)
     cursor = session.execute(
         "UPDATE jobs SET lease_expires = ? WHERE owner = ? AND status = 'running' "
-        "RETURNING id, cancel_requested",
-        (until, owner),
+        f"AND id IN ({marks}) RETURNING id, cancel_requested",
+        (until, owner, *job_ids),
     )
     return {job_id: bool(asked) for job_id, asked in cursor.fetchall()}
 

@@ -467,7 +467,9 @@ def test_a_stopping_replica_hands_its_jobs_back_and_the_next_start_runs_them(
 def test_any_replica_answers_for_a_job_another_runs_and_cancels_it(database: Backend) -> None:
     """Replica A has one runner, busy; a job submitted to A is run by replica B (it polls the
     store); A reads its state and result, and cancels B's running job through the store."""
-    settings = database.settings(job_runners=1, job_poll_interval=0.05, job_lease=1.0)
+    # Leases of 4 s: renewed every second, with room for a loaded machine's pauses (a lease
+    # that expired under A's running job would hand it to B, which is another test's).
+    settings = database.settings(job_runners=1, job_poll_interval=0.05, job_lease=4.0)
     a_service, b_service = FakeService(), FakeService(hold_all=False)
     b_service.hold = {"slow"}
 
@@ -508,6 +510,8 @@ def test_a_dead_replicas_batch_is_finished_by_another_each_item_recorded_once(
         try:
             batch = await a.submit("items", Flags([True, False, True, True]), principal="")
             await _until(lambda: a_service.calls == [3, 2, 1])
+            while len(await a.store.items_by_answer(batch["id"], 0, 10)) < 2:
+                await asyncio.sleep(0.005)  # items 3 and 2 committed (a loaded machine is slow)
             a._tasks[1].cancel()  # its heartbeat stops: the lease is no longer renewed
             a._tasks[0].cancel()  # and it claims nothing more
             async with _started(settings, b_service) as b:
@@ -524,5 +528,42 @@ def test_a_dead_replicas_batch_is_finished_by_another_each_item_recorded_once(
                 assert final == row  # A's finish changed nothing
         finally:
             await a.close()
+
+    _run(scenario)
+
+
+def test_a_job_claimed_while_the_leases_are_renewed_is_not_taken_for_lost(
+    sqlite: Backend,
+) -> None:
+    """The heartbeat's renewal of job A is in flight when job B is claimed: its answer does
+    not name B (B was not asked about), and B runs on; only what was asked is judged."""
+    settings = sqlite.settings(job_lease=1.0)
+    service = FakeService()
+
+    async def scenario() -> None:
+        async with _started(settings, service) as manager:
+            renew = manager.store.renew
+            asked, go = asyncio.Event(), asyncio.Event()
+            renewals: list[list[str]] = []
+
+            async def held_back(owner: str, until: float, job_ids: list[str]) -> Any:
+                renewals.append(list(job_ids))
+                asked.set()
+                await go.wait()
+                return await renew(owner, until, job_ids)
+
+            manager.store.renew = held_back  # type: ignore[method-assign]
+            first = await manager.submit("echo", Word("A"), principal="")
+            await asked.wait()  # a renewal of A alone is in flight
+            second = await manager.submit("echo", Word("B"), principal="")
+            await _until(lambda: service.calls == ["A", "B"])
+            go.set()
+            await _until(lambda: len(renewals) >= 3)  # two more heartbeats, B renewed in them
+            assert renewals[0] == [first["id"]]
+            assert sorted(renewals[-1]) == sorted([first["id"], second["id"]])
+            job = manager.live(second["id"])
+            assert job is not None and not job.lease_lost
+            service.gate.set()
+            await _status(manager, second["id"], "succeeded")
 
     _run(scenario)

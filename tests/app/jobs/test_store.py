@@ -255,7 +255,7 @@ def test_a_job_whose_lease_expired_is_claimed_again_with_its_items_and_the_old_o
             assert claim is not None and claim["answered"] == {}
             a.insert_item(job["id"], "A", 2, 1, True, '{"index": 2, "by": "A"}')
             a.insert_item(job["id"], "A", 0, 2, False, '{"index": 0, "by": "A"}')
-            assert await a.renew("A", NOW + LEASE) == {job["id"]: False}
+            assert await a.renew("A", NOW + LEASE, [job["id"]]) == {job["id"]: False}
             assert await b.claim("B", NOW + LEASE / 2, LEASE) is None  # the lease holds
             taken = await b.claim("B", NOW + 2 * LEASE, LEASE)
             assert taken is not None and taken["id"] == job["id"]
@@ -264,7 +264,7 @@ def test_a_job_whose_lease_expired_is_claimed_again_with_its_items_and_the_old_o
                 2,
                 2,
             )
-            assert await a.renew("A", NOW + 3 * LEASE) == {}  # A learns it lost the lease
+            assert await a.renew("A", NOW + 3 * LEASE, [job["id"]]) == {}  # A lost the lease
             a.insert_item(job["id"], "A", 1, 3, True, '{"index": 1, "by": "A"}')
             a.update_job(job["id"], "A", {"status": "succeeded", "result": "A's"})
             b.insert_item(job["id"], "B", 0, 3, True, '{"index": 0, "by": "B"}')
@@ -319,7 +319,8 @@ def test_a_queued_job_cancels_at_once_a_running_one_is_asked_to(database: Backen
             assert row is not None and (row["status"], row["finished"]) == ("cancelled", NOW)
             assert not await jobs.cancel_queued(running["id"], "alice", NOW + 1, NOW + 60)
             await jobs.ask_cancel(running["id"], "alice")
-            assert await jobs.renew("A", NOW + LEASE) == {running["id"]: True}
+            assert await jobs.renew("A", NOW + LEASE, [running["id"]]) == {running["id"]: True}
+            assert await jobs.renew("A", NOW + LEASE, []) == {}
             # Its replica died before it could: once the lease has expired, it cancels here.
             assert await jobs.cancel_queued(running["id"], "alice", NOW + 3 * LEASE, NOW + 60)
 
