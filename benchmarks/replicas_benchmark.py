@@ -24,7 +24,9 @@ Measured in each deployment:
 
 And in this process, with no HTTP and no service, the store's own time per job: what a job asks
 of it (submit, claim, finish, two reads) one job after another, SQLite against PostgreSQL, and
-one rate-limit token. Ratios to the single service are printed; nothing is asserted.
+one rate-limit token. Every deployment is up at once and measured in turn, `--rounds` times, so
+the machine's drift falls on all alike. Ratios to the single service are printed; nothing is
+asserted.
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Iterator
+from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
 from typing import Any
@@ -186,6 +189,12 @@ def batch_items_per_second(url: str, count: int, run: str) -> float:
 
 def solve_latencies(urls: list[str], count: int, run: str) -> tuple[float, float]:
     """(p50, p90) [ms] of sequential /solve requests, alternating between `urls`."""
+    p50, p90 = np.percentile(solve_times(urls, count, run), [50, 90])
+    return float(p50), float(p90)
+
+
+def solve_times(urls: list[str], count: int, run: str) -> list[float]:
+    """[ms] of sequential /solve requests, alternating between `urls`."""
     clients = [httpx.Client(base_url=url, timeout=60) for url in urls]
     times = []
     for n in range(count):
@@ -196,8 +205,7 @@ def solve_latencies(urls: list[str], count: int, run: str) -> tuple[float, float
         response.raise_for_status()
     for client in clients:
         client.close()
-    p50, p90 = np.percentile(times, [50, 90])
-    return 1e3 * float(p50), 1e3 * float(p90)
+    return [1e3 * t for t in times]
 
 
 # ------------------------------------------------------------------------ the store alone
@@ -237,97 +245,114 @@ async def store_per_job(store: Store, count: int) -> tuple[float, float, float]:
 # ------------------------------------------------------------------------------------ main
 
 
-def deployment(
-    name: str, urls: list[str], pids: list[int], cluster: Cluster | None, args: argparse.Namespace
-) -> dict[str, float]:
-    solve_latencies(urls, 20, f"{name}-warm")  # connections open, first requests past
-    service_cpu = sum(cpu_seconds(pid) for pid in pids)
-    database_cpu = postgres_cpu(cluster) if cluster else 0.0
-    jobs_s, jobs_wall = asyncio.run(jobs_per_second(urls, args.jobs, name))
-    service_cpu = sum(cpu_seconds(pid) for pid in pids) - service_cpu
-    database_cpu = (postgres_cpu(cluster) if cluster else 0.0) - database_cpu
-    items_s = batch_items_per_second(urls[0], args.items, name)
-    p50, p90 = solve_latencies(urls, args.solves, name)
-    figures = {
-        "jobs/s": jobs_s,
-        "jobs/s wall": jobs_wall,
-        "service CPU ms/job": 1e3 * service_cpu / args.jobs,
-        "postgres CPU ms/job": 1e3 * database_cpu / args.jobs,
-        "batch items/s": items_s,
-        "/solve p50 ms": p50,
-        "/solve p90 ms": p90,
-    }
-    print(f"\n{name}")
-    for key, value in figures.items():
-        print(f"  {key:22s} {value:9.2f}")
-    return figures
+@dataclass
+class Deployment:
+    """One deployment's services (URLs and the pids of their uvicorn processes) and what was
+    measured of it, round after round."""
+
+    name: str
+    urls: list[str]
+    pids: list[int]
+    cluster: Cluster | None = None
+    jobs: int = 0
+    job_seconds: float = 0.0  # first created to last finished, summed over rounds
+    service_cpu: float = 0.0  # [s] during its job rounds
+    database_cpu: float = 0.0
+    items: int = 0
+    item_seconds: float = 0.0
+    solves: list[float] = field(default_factory=list)  # [ms]
+
+    def cpu(self) -> tuple[float, float]:
+        database = postgres_cpu(self.cluster) if self.cluster else 0.0
+        return sum(cpu_seconds(pid) for pid in self.pids), database
+
+    def job_round(self, count: int, run: str) -> None:
+        service, database = self.cpu()
+        rate, _ = asyncio.run(jobs_per_second(self.urls, count, run))
+        service_after, database_after = self.cpu()
+        self.jobs += count
+        self.job_seconds += count / rate
+        self.service_cpu += service_after - service
+        self.database_cpu += database_after - database
+
+    def batch_round(self, count: int, run: str) -> None:
+        self.items += count
+        self.item_seconds += count / batch_items_per_second(self.urls[0], count, run)
+
+    def figures(self) -> dict[str, float]:
+        p50, p90 = np.percentile(self.solves, [50, 90]) if self.solves else (np.nan, np.nan)
+        jobs = max(self.jobs, 1)
+        return {
+            "jobs/s": self.jobs / self.job_seconds if self.job_seconds else np.nan,
+            "service CPU ms/job": 1e3 * self.service_cpu / jobs,
+            "postgres CPU ms/job": 1e3 * self.database_cpu / jobs,
+            "batch items/s": self.items / self.item_seconds if self.item_seconds else np.nan,
+            "/solve p50 ms": float(p50),
+            "/solve p90 ms": float(p90),
+        }
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--jobs", type=int, default=300)
-    parser.add_argument("--items", type=int, default=1000)
-    parser.add_argument("--solves", type=int, default=300)
+    parser.add_argument("--jobs", type=int, default=300, help="solve jobs per deployment")
+    parser.add_argument("--items", type=int, default=1000, help="batch items per deployment")
+    parser.add_argument("--solves", type=int, default=300, help="/solve requests per deployment")
+    parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--store-jobs", type=int, default=500)
     args = parser.parse_args()
     print(f"load average before: {os.getloadavg()}")
-    common = {
-        "FLEXWING_RATE_LIMIT": "1000000",
-        "FLEXWING_RATE_BURST": "1000000",
-        "PYTHONUNBUFFERED": "1",
-    }
-    with tempfile.TemporaryDirectory() as tmp_name:
+    limited = {"FLEXWING_RATE_LIMIT": "1000000", "FLEXWING_RATE_BURST": "1000000"}
+    with tempfile.TemporaryDirectory() as tmp_name, contextlib.ExitStack() as stack:
         tmp = Path(tmp_name)
         cluster = Cluster(fsync=True)
         cluster.start()
-        try:
-            url = cluster.schema()
-            count = args.store_jobs
-            sqlite_ms = asyncio.run(store_per_job(Store.of(None, tmp / "alone.sqlite3"), count))
-            postgres_ms = asyncio.run(store_per_job(Store.of(cluster.schema(), tmp), count))
-            print("\nthe store alone, in process, one after another [ms]")
-            print("              per job   per token  per read")
-            for name, ms in (("SQLite", sqlite_ms), ("PostgreSQL", postgres_ms)):
-                print(f"  {name:10s}  {ms[0]:7.3f}   {ms[1]:7.3f}    {ms[2]:7.3f}")
-            single_env = common | {
-                "FLEXWING_WORKERS": "2",
-                "FLEXWING_JOBS_DB": str(tmp / "jobs.sqlite3"),
-            }
-            with service(tmp, single_env) as (single_url, single_pid):
-                single = deployment("one service, SQLite", [single_url], [single_pid], None, args)
-            replica_env = common | {"FLEXWING_WORKERS": "1", "FLEXWING_DATABASE_URL": url}
-            with (
-                service(tmp, replica_env) as (a_url, a_pid),
-                service(tmp, replica_env) as (
-                    b_url,
-                    b_pid,
-                ),
-            ):
-                shared = deployment(
-                    "two replicas, PostgreSQL", [a_url, b_url], [a_pid, b_pid], cluster, args
-                )
-            # The same replicas without a rate limit: what the shared bucket adds to /solve.
-            unlimited_env = {k: v for k, v in replica_env.items() if "RATE" not in k}
-            with (
-                service(tmp, unlimited_env) as (a_url, _),
-                service(tmp, unlimited_env) as (
-                    b_url,
-                    _,
-                ),
-            ):
-                solve_latencies([a_url, b_url], 20, "unlimited-warm")
-                unlimited = solve_latencies([a_url, b_url], args.solves, "unlimited")
-            print("\ntwo replicas, PostgreSQL, no rate limit")
-            print(f"  {'/solve p50 ms':22s} {unlimited[0]:9.2f}")
-            print(f"  {'/solve p90 ms':22s} {unlimited[1]:9.2f}")
-        finally:
-            cluster.remove()
+        stack.callback(cluster.remove)
+        count = args.store_jobs
+        sqlite_ms = asyncio.run(store_per_job(Store.of(None, tmp / "alone.sqlite3"), count))
+        postgres_ms = asyncio.run(store_per_job(Store.of(cluster.schema(), tmp), count))
+        print("\nthe store alone, in process, one after another [ms]")
+        print("              per job   per token  per read")
+        for name, ms in (("SQLite", sqlite_ms), ("PostgreSQL", postgres_ms)):
+            print(f"  {name:10s}  {ms[0]:7.3f}   {ms[1]:7.3f}    {ms[2]:7.3f}")
+        # Every deployment up at once (the idle ones cost next to nothing), measured in turn,
+        # round after round: the machine's drift falls on all of them alike.
+        single_env = limited | {"FLEXWING_WORKERS": "2", "FLEXWING_JOBS_DB": str(tmp / "j.db")}
+        single = Deployment("one service, SQLite", [], [])
+        shared = Deployment("two replicas, PostgreSQL", [], [], cluster)
+        unlimited = Deployment("two replicas, PostgreSQL, no rate limit (/solve only)", [], [])
+        replica_env = {"FLEXWING_WORKERS": "1", "FLEXWING_DATABASE_URL": cluster.schema()}
+        for target, env, copies in (
+            (single, single_env, 1),
+            (shared, limited | replica_env, 2),
+            (unlimited, replica_env | {"FLEXWING_DATABASE_URL": cluster.schema()}, 2),
+        ):
+            for _ in range(copies):
+                url, pid = stack.enter_context(service(tmp, env))
+                target.urls.append(url)
+                target.pids.append(pid)
+        everyone = (single, shared, unlimited)
+        for deployment in everyone:
+            solve_latencies(deployment.urls, 20, f"{deployment.name}-warm")
+        for n in range(args.rounds):
+            for deployment in (single, shared):
+                deployment.job_round(args.jobs // args.rounds, f"{deployment.name}-{n}")
+                deployment.batch_round(args.items // args.rounds, f"{deployment.name}-{n}")
+            for deployment in everyone:
+                run = f"{deployment.name}-solve-{n}"
+                deployment.solves += solve_times(deployment.urls, args.solves // args.rounds, run)
+        results = {deployment.name: deployment.figures() for deployment in everyone}
+    for name, figures in results.items():
+        print(f"\n{name}")
+        for key, value in figures.items():
+            print(f"  {key:22s} {value:9.2f}")
+    one, two = results[single.name], results[shared.name]
     print("\ntwo replicas / one service")
     for key in ("jobs/s", "batch items/s", "/solve p50 ms", "/solve p90 ms"):
-        print(f"  {key:22s} {shared[key] / single[key]:9.2f}")
-    extra = shared["service CPU ms/job"] + shared["postgres CPU ms/job"]
-    extra -= single["service CPU ms/job"]
+        print(f"  {key:22s} {two[key] / one[key]:9.2f}")
+    extra = two["service CPU ms/job"] + two["postgres CPU ms/job"] - one["service CPU ms/job"]
     print(f"  shared store's CPU per job (services + PostgreSQL - single service): {extra:.2f} ms")
+    bucket = results[shared.name]["/solve p50 ms"] - results[unlimited.name]["/solve p50 ms"]
+    print(f"  the shared rate-limit bucket in /solve p50: {bucket:+.2f} ms")
     print(f"load average after: {os.getloadavg()}")
 
 
