@@ -17,14 +17,16 @@ from fastapi.openapi.utils import get_openapi
 from fastapi.routing import APIRoute
 from fastapi.staticfiles import StaticFiles
 
+import solver
 from app import __version__, security
 from app.execution.pool import WorkerPool
 from app.jobs import JobManager
 from app.jobs.store import Store
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
-from app.routes import controls, flutter, health, optimize, page, solve, sweep
+from app.routes import health, operations, page, wing
 from app.routes import jobs as job_routes
+from app.routes.answers import Arrival
 from app.service import Service
 from app.settings import Settings, get_settings
 
@@ -157,14 +159,9 @@ def _openapi(app: FastAPI, settings: Settings) -> Callable[[], dict[str, Any]]:
             description=app.description,
             routes=app.routes,
             tags=[
-                {"name": "equilibrium", "description": "Solve for aeroelastic equilibria."},
-                {"name": "design", "description": "Optimise a wing's jig twist and spar."},
-                {"name": "dynamics", "description": "Vibration modes and flutter."},
-                {
-                    "name": "controls",
-                    "description": "Flaps and ailerons: roll, control effectiveness, reversal.",
-                },
+                *({"name": tag, "description": text} for tag, text in solver.TAGS.items()),
                 {"name": "jobs", "description": "Long work in the background, and batches."},
+                {"name": "wing", "description": "A wing as the solver takes it."},
                 {"name": "operations", "description": "Liveness, readiness and metrics."},
             ],
         )
@@ -219,18 +216,10 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_handlers(app)
     # Each operation answers 202 with a job past its wait (app.routes.answers), or at once
     # with Prefer: respond-async.
-    operations = (
-        ("solve", solve.router),
-        ("sweep", sweep.router),
-        ("optimize", optimize.router),
-        ("flutter", flutter.router),
-        ("roll", controls.roll_router),
-        ("controls", controls.effectiveness_router),
-    )
-    for name, router in operations:
+    for name, router in operations.routers().items():
         at_once = Depends(job_routes.respond_async(name))
         app.include_router(router, dependencies=[at_once], responses=job_routes.ACCEPTED)
-    for module in (health, page):
+    for module in (health, page, wing):
         app.include_router(module.router)
     job_routes.install(app, jobs)
     app.mount("/static", StaticFiles(directory=page.STATIC_DIR), name="static")
@@ -242,6 +231,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     security.install_access(app, settings, metrics, store)
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     security.install_headers(app, settings)  # CORS and security headers on every response
+    app.add_middleware(Arrival)  # outermost: a synchronous wait counts from the arrival
     app.openapi = _openapi(app, settings)  # type: ignore[method-assign]
     return app
 

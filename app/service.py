@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from pydantic import BaseModel
 
+import solver
 from app.cache import ResultCache
 from app.execution import worker
 from app.execution.pool import (
@@ -36,29 +36,26 @@ from app.schemas.responses import Answer
 from app.settings import Settings
 from solver import InvalidInput, SolverError
 
-__all__ = ["OPERATIONS", "Operation", "Service", "task_of"]
+__all__ = ["Service", "budget_of", "parts_of", "task_of"]
 
 T = TypeVar("T")
 
 
-@dataclass(frozen=True)
-class Operation:
-    """A synchronous operation: the setting that holds its time budget, and the label its
-    successes carry in the solves metric."""
-
-    name: str
-    budget: str
-    answered: str
-
-
-OPERATIONS = {
-    "solve": Operation("solve", "solve_timeout", "equilibrium"),
-    "sweep": Operation("sweep", "sweep_timeout", "completed"),
-    "optimize": Operation("optimize", "optimize_timeout", "optimum"),
-    "flutter": Operation("flutter", "flutter_timeout", "analysed"),
-    "roll": Operation("roll", "solve_timeout", "rolled"),
-    "controls": Operation("controls", "sweep_timeout", "completed"),
+# Operation name -> its row of the solver's table: its time budget and metric label.
+_TABLE: dict[str, solver.Operation] = {
+    operation.name: operation for operation in solver.OPERATION_TABLE
 }
+
+
+def parts_of(operation: str, task: Any) -> int:
+    """[-] how many parts the solver input `task` of `operation` reports progress in."""
+    return _TABLE[operation].count_parts(task)
+
+
+def budget_of(operation: str, settings: Settings) -> float:
+    """[s] the time budget of one answer of `operation` (FLEXWING_<BUDGET>_TIMEOUT)."""
+    seconds: float = getattr(settings, f"{_TABLE[operation].budget}_timeout")
+    return seconds
 
 
 def _label(error: SolverError | InvalidInput) -> str:
@@ -99,8 +96,9 @@ class Service:
     async def answer(
         self, operation: str, request: BaseModel, progress: Progress | None = None
     ) -> bytes:
-        """The response body of `request` to `operation` (a key of `OPERATIONS`), or the
-        problem that says why there is none; `progress(done, total)` as its parts are done."""
+        """The response body of `request` to `operation` (a name of `solver.OPERATION_TABLE`),
+        or the problem that says why there is none; `progress(done, total)` as its parts are
+        done."""
         return await self.run(operation, self.task(request), progress)
 
     async def run(self, operation: str, task: Any, progress: Progress | None = None) -> bytes:
@@ -110,7 +108,7 @@ class Service:
         hit = self._cached(key)
         if hit is not None:
             return hit
-        budget = getattr(self.settings, OPERATIONS[operation].budget)
+        budget = budget_of(operation, self.settings)
         outcome = await self._in_a_worker(worker.run, task, budget, operation, progress)
         return self._recorded(operation, key, outcome)
 
@@ -132,7 +130,7 @@ class Service:
                 answers.append(problem)
         missing = [i for i, answer in enumerate(answers) if answer is None]
         if missing:
-            budget = getattr(self.settings, OPERATIONS[operation].budget) * len(missing)
+            budget = budget_of(operation, self.settings) * len(missing)
             chunk = tuple(tasks[i] for i in missing)
             outcomes = await self._in_a_worker(worker.run_each, chunk, budget, operation, None)
             for i, outcome in zip(missing, outcomes, strict=True):
@@ -158,7 +156,7 @@ class Service:
             raise problem_of(outcome.error)
         answer = outcome.answer
         assert answer is not None
-        self.metrics.solves.labels(operation, OPERATIONS[operation].answered).inc()
+        self.metrics.solves.labels(operation, _TABLE[operation].answered).inc()
         self.results.put(key, answer, answer.nbytes)
         return answer.body()
 

@@ -41,8 +41,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import solver
 from solver import FlightCondition, SolverOptions
-from solver.cache import model_for
-from solver.layout import Layout
+from solver.model.layout import Layout
+from solver.numerics.cache import model_for
 from tests.study import DENSITY, study_arrays
 
 OPTIONS = SolverOptions(chordwise_panels=4)

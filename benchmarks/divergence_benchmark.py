@@ -39,9 +39,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import solver
 from solver import FlightCondition, NoEquilibrium, SolverOptions, Wing
-from solver.branch import branch, search_velocity_limit
-from solver.stability import divergence_pressure
-from solver.system import CoupledSystem
+from solver.numerics.stability import divergence_pressure
+from solver.statics.branch import branch, search_velocity_limit
+from solver.statics.system import CoupledSystem
 from tests.study import DENSITY as RHO
 from tests.study import study_wing as _study_wing
 

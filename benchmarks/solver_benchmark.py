@@ -77,8 +77,8 @@ if __name__ == "__main__" and "--reuse-cache" not in sys.argv:
     atexit.register(shutil.rmtree, _private_cache, True)
 
 import solver  # noqa: E402
-from solver.stability import beam_response, divergence_pressure  # noqa: E402
-from solver.system import CoupledSystem  # noqa: E402
+from solver.numerics.stability import beam_response, divergence_pressure  # noqa: E402
+from solver.statics.system import CoupledSystem  # noqa: E402
 from tests.study import ALPHA, DENSITY, study_wing  # noqa: E402
 
 STUDY_SWEEP = [6.0, 10.0, 12.0, 15.0, 18.0, 20.0]

@@ -16,30 +16,20 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from solver.airspeed_sweep import airspeed_sweep
-from solver.cache import CacheInfo, cache_info, clear_caches
-from solver.controls import ControlSurface
-from solver.design import (
-    Design,
-    DesignCondition,
-    DesignConstraints,
-    DesignProblem,
-    TwistDesign,
-    WallDesign,
-)
-from solver.divergence import (
-    divergence_summary,
-    find_fold,
-    fit_divergence,
-    linear_divergence,
-    linear_divergence_pressure,
-)
-from solver.effectiveness import (
+from solver.controls.effectiveness import (
     antisymmetric_divergence,
     control_effectiveness,
     control_sweep,
     linear_reversal,
 )
+from solver.controls.roll import roll
+from solver.deprecated import renamed
+from solver.dynamics.aerodynamic_forces import (
+    MAX_REDUCED_FREQUENCY,
+    generalised_aerodynamic_forces,
+)
+from solver.dynamics.flutter import FlutterOptions, flutter
+from solver.dynamics.modes import natural_modes
 from solver.errors import (
     ConvergenceError,
     InfeasibleDesign,
@@ -48,8 +38,59 @@ from solver.errors import (
     SolverError,
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
-from solver.flutter import FlutterOptions, flutter
-from solver.flutter_results import (
+from solver.inputs.airfoil import MAX_CAMBER
+from solver.inputs.control_surfaces import ControlSurface
+from solver.inputs.design import (
+    Design,
+    DesignCondition,
+    DesignConstraints,
+    DesignProblem,
+    TwistDesign,
+    WallDesign,
+)
+from solver.inputs.flight import (
+    FLIGHT_RULE,
+    ISA_SEA_LEVEL_DENSITY,
+    FlightCondition,
+    OperatingPoint,
+    VelocityRange,
+)
+from solver.inputs.mass import ConcentratedMass, MassModel
+from solver.inputs.options import InitialGuess, SolverOptions, ValidityLimits
+from solver.inputs.spar import Material, SparDesign, ThicknessFraction, TubeSpar
+from solver.inputs.wing import MIN_STATIONS, StationSpacing, Wing
+from solver.model.layout import Layout
+from solver.numerics.cache import CacheInfo, cache_info, clear_caches
+from solver.numerics.warm import is_compiled, warm_up
+from solver.operations.controls import ControlsInput, RollInput
+from solver.operations.design import OptimizeInput
+from solver.operations.dynamics import FlutterInput
+from solver.operations.statics import SolveInput, SweepInput
+from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation
+from solver.optimization.optimize import optimize
+from solver.results.aerodynamic_forces import GeneralisedAerodynamicForces
+from solver.results.controls import (
+    ControlEffectiveness,
+    ControlSweep,
+    ControlSweepPoint,
+    HingeMoment,
+    Reversal,
+    ReversalSummary,
+    RollResponse,
+    RollStability,
+)
+from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
+from solver.results.equilibrium import (
+    Equilibrium,
+    Fold,
+    Panels,
+    SolveInfo,
+    Stability,
+    Stations,
+    Totals,
+)
+from solver.results.findings import FINDING_CODES, Finding, FindingOnset
+from solver.results.flutter import (
     DivergenceOnset,
     FlutterInfo,
     FlutterOnset,
@@ -59,79 +100,39 @@ from solver.flutter_results import (
     NaturalModes,
     NoFlutter,
 )
-from solver.inputs import (
-    FLIGHT_RULE,
-    ISA_SEA_LEVEL_DENSITY,
-    MAX_CAMBER,
-    MIN_STATIONS,
-    FlightCondition,
-    InitialGuess,
-    OperatingPoint,
-    SolverOptions,
-    StationSpacing,
-    ValidityLimits,
-    VelocityRange,
-    Wing,
-)
-from solver.layout import Layout
-from solver.mass import ConcentratedMass, MassModel
-from solver.modes import natural_modes
-from solver.operations import (
-    OPERATIONS,
-    ControlsInput,
-    FlutterInput,
-    OptimizeInput,
-    RollInput,
-    SolveInput,
-    SweepInput,
-)
-from solver.optimize import optimize
-from solver.results import (
-    FINDING_CODES,
+from solver.results.quantities import Progress
+from solver.results.sweep import (
     AirspeedPoint,
     AirspeedSweep,
     AirspeedSweepInfo,
-    ConstraintValue,
-    ControlEffectiveness,
-    ControlSweep,
-    ControlSweepPoint,
     DivergenceSummary,
-    Equilibrium,
-    Finding,
-    FindingOnset,
     FitDivergence,
-    Fold,
-    HingeMoment,
     LinearDivergence,
-    OptimalDesign,
-    OptimizerInfo,
-    Panels,
     PointFailure,
-    Progress,
-    Reversal,
-    ReversalSummary,
-    RigidOptimum,
-    RollResponse,
-    RollStability,
-    SolveInfo,
-    Stability,
-    Stations,
-    Totals,
 )
-from solver.roll import roll
-from solver.solve import solve
-from solver.spar import Material, SparDesign, ThicknessFraction, TubeSpar
-from solver.trefftz import trefftz_drag
-from solver.trim import rigid_trim_alpha, trim, trimmed_divergence_limit
-from solver.warm import is_compiled, warm_up
+from solver.statics.airspeed_sweep import airspeed_sweep
+from solver.statics.divergence import (
+    divergence_summary,
+    find_fold,
+    fit_divergence,
+    linear_divergence,
+    linear_divergence_pressure,
+)
+from solver.statics.solve import solve
+from solver.statics.trefftz import trefftz_drag
+from solver.statics.trim import rigid_trim_alpha, trim, trimmed_divergence_limit
 
 __all__ = [
     "FINDING_CODES",
     "FLIGHT_RULE",
     "ISA_SEA_LEVEL_DENSITY",
     "MAX_CAMBER",
+    "MAX_REDUCED_FREQUENCY",
     "MIN_STATIONS",
     "OPERATIONS",
+    "OPERATION_TABLE",
+    "Operation",
+    "TAGS",
     "airspeed_sweep",
     "AirspeedPoint",
     "AirspeedSweep",
@@ -174,6 +175,8 @@ __all__ = [
     "FlutterPoint",
     "FlutterResult",
     "Fold",
+    "generalised_aerodynamic_forces",
+    "GeneralisedAerodynamicForces",
     "HingeMoment",
     "InfeasibleDesign",
     "InitialGuess",
@@ -233,3 +236,8 @@ __all__ = [
     "warm_up",
     "Wing",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """Renamed public names, for a release, with a DeprecationWarning (`solver.deprecated`)."""
+    return renamed(name)

@@ -43,7 +43,7 @@ class ConvergenceError(SolverError):
     Attributes:
         velocity: [m/s] airspeed of the attempted solve.
         iterations: Newton iterations taken.
-        residual_norm: max-norm of the final residual (mixed units, see `solver.residual`).
+        residual_norm: max-norm of the final residual (mixed units, see `solver.model.residual`).
         reason: what stopped it (iteration limit, singular Jacobian, a stalled branch...).
     """
 

@@ -108,12 +108,12 @@ class Limits:
 #   text         a name: a string of 1 to `le` characters
 #   per_station  one number for every station, or N numbers, each within the limits
 #   positions    the stations: N increasing numbers from 0, or evenly spaced ones
-#                (`solver.inputs.StationSpacing`)
-#   airfoil      a camber line for every station or one per station (`solver.airfoil`)
-#   diameter     per_station, or a `solver.spar.ThicknessFraction`
+#                (`solver.inputs.wing.StationSpacing`)
+#   airfoil      a camber line for every station or one per station (`solver.inputs.airfoil`)
+#   diameter     per_station, or a `solver.inputs.spar.ThicknessFraction`
 #   nested       an input dataclass of its own (`given`)
 #   items        a list of `given` input dataclasses (at most one per station)
-#   velocities   airspeeds: a list, or `solver.inputs.VelocityRange`
+#   velocities   airspeeds: a list, or `solver.inputs.flight.VelocityRange`
 #   deformation  N numbers (a starting deformation), each within the limits
 FORMS = (
     "number",
@@ -137,8 +137,10 @@ class Spec:
     """What an input field is: its unit ("-" dimensionless, "" none), a one-line description,
     its limits, how it is given (`form`, above; `given` the input dataclass of nested forms,
     `choices` those of a choice), an example value for documentation, for a nested field whose
-    fields appear in its place in the API (`flatten`), and the fields of `given` a nested one
-    is given `without` (a sweep's flight has no airspeed of its own)."""
+    fields appear in its place in the API (`flatten`), the fields of `given` a nested one
+    is given `without` (a sweep's flight has no airspeed of its own), and whether the field
+    enters the compiled model as a parameter (`compiled`: a slot of its own in the model's
+    parameter vector, named after the field, `solver.model.layout`)."""
 
     unit: str
     description: str
@@ -149,6 +151,7 @@ class Spec:
     choices: tuple[str, ...] = ()
     flatten: bool = False
     without: tuple[str, ...] = ()
+    compiled: bool = False
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
@@ -175,13 +178,17 @@ def parameter(
     flatten: bool = False,
     without: tuple[str, ...] = (),
     example: Any = None,
+    compiled: bool = False,
     **field_kwargs: Any,
 ) -> Any:
     """A dataclass field of an input, documented and limited (`field_kwargs`: default,
-    default_factory, kw_only, ...). `per_station=True` is form "per_station"."""
+    default_factory, kw_only, ...). `per_station=True` is form "per_station"; `compiled=True`
+    makes the field a parameter of the compiled model (`Spec.compiled`)."""
     kind = form or ("per_station" if per_station else "number")
     limits = Limits(ge, gt, le, lt, why)
-    spec = Spec(unit, description, limits, kind, example, given, choices, flatten, without)
+    spec = Spec(
+        unit, description, limits, kind, example, given, choices, flatten, without, compiled
+    )
     return dataclasses.field(metadata={"input": spec}, **field_kwargs)
 
 

@@ -27,7 +27,7 @@ import scipy.optimize
 import scipy.special
 
 import solver
-from solver.mass import ConcentratedMass, MassModel
+from solver.inputs.mass import ConcentratedMass, MassModel
 
 # The Goland wing (Goland 1945, J. Appl. Mech. 12, A197-A208), SI as usually quoted: semispan
 # 20 ft, chord 6 ft, elastic axis at 33 % chord, centre of gravity at 43 %, EI 23.65e6 lb ft^2,

@@ -1,7 +1,7 @@
 """The Dockerfile's Python one-liners name what the package really exports.
 
 No Docker engine runs in CI, so a renamed function would otherwise break the image's build
-unnoticed (the compile step once imported `solver.compiled.compile_now`, long gone). Each
+unnoticed (the compile step once imported `solver.numerics.compiled.compile_now`, long gone). Each
 `python -c "..."` is parsed, never run: every module it imports must import, and every name it
 takes from a module (`from m import f`, `m.f`) must exist there.
 """

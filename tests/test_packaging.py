@@ -4,16 +4,23 @@ from __future__ import annotations
 
 import tomllib
 
+import setuptools
+
 from tests import study
 
 
-def test_every_app_package_is_installed() -> None:
-    """pyproject lists packages explicitly: a new subpackage of app/ must be added there, or
-    `pip install .` (the Dockerfile) ships an app that cannot import it."""
+def test_every_package_of_solver_and_app_is_installed() -> None:
+    """pyproject finds the packages by pattern: every subpackage of solver/ and app/ (a new one
+    included) must match it, or `pip install .` (the Dockerfile) ships code that cannot import
+    it."""
     pyproject = tomllib.loads((study.ROOT / "pyproject.toml").read_text())
-    listed = set(pyproject["tool"]["setuptools"]["packages"])
-    app_dir = study.ROOT / "app"
-    found = {
-        ".".join(init.parent.relative_to(study.ROOT).parts) for init in app_dir.rglob("__init__.py")
+    include = pyproject["tool"]["setuptools"]["packages"]["find"]["include"]
+    shipped = set(setuptools.find_packages(where=str(study.ROOT), include=include))
+    present = {
+        ".".join(init.parent.relative_to(study.ROOT).parts)
+        for top in ("solver", "app")
+        for init in (study.ROOT / top).rglob("__init__.py")
     }
-    assert found <= listed
+    assert len(present) > 10
+    assert present <= shipped
+    assert not {name for name in shipped if name.split(".")[0] not in ("solver", "app")}

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import hashlib
 import logging
 import secrets
 from collections.abc import Callable
@@ -38,8 +39,8 @@ from distributed.client import FutureCancelledError
 
 from app.execution import worker
 from app.execution.pool import (
+    BackendState,
     BudgetExceeded,
-    Capacity,
     ClusterWorkerInfo,
     NotReady,
     Progress,
@@ -68,7 +69,7 @@ class _DaskWorker:
     warming: Any = None  # the warm-up task's Dask future
 
 
-class DaskWorkers:
+class DaskWorkers(BackendState):
     # A task's round trip through the scheduler is ~10 ms and costs the scheduler, the worker
     # and the client CPU of their own (benchmarks/batch_benchmark.py): a chunk of batch items
     # takes about 50 round trips' time (0.25 s: 219 items/s on 2 workers, 0.5 s: 237).
@@ -77,37 +78,17 @@ class DaskWorkers:
     def __init__(self, settings: Settings, metrics: Metrics) -> None:
         if not settings.dask_scheduler:
             raise ValueError("FLEXWING_EXECUTOR=dask needs FLEXWING_DASK_SCHEDULER=tcp://host:port")
-        self.settings = settings
+        # No slots until the cluster's threads are known: they grow and shrink with it.
+        detail = f"connecting to the Dask scheduler at {settings.dask_scheduler}"
+        super().__init__(settings, 0, detail)
         self.metrics = metrics
         self.address = settings.dask_scheduler
-        self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(0)  # grows with the cluster's threads
         self._workers: dict[str, _DaskWorker] = {}
         self._client: Any = None
-        self._ready = asyncio.Event()
-        self._started = False
-        self._closing = False
-        self._detail = f"connecting to the Dask scheduler at {self.address}"
         self._watching: asyncio.Task[None] | None = None
         self._background: set[asyncio.Task[Any]] = set()
 
     # -------------------------------------------------------------------- what it reports
-
-    @property
-    def ready(self) -> bool:
-        return self._ready.is_set() and not self._closing
-
-    @property
-    def started(self) -> bool:
-        return self._started
-
-    @property
-    def detail(self) -> str:
-        return self._detail
-
-    @property
-    def capacity(self) -> int:
-        return self._slots.size
 
     @property
     def parallelism(self) -> int:
@@ -124,9 +105,6 @@ class DaskWorkers:
             ClusterWorkerInfo(w.address, w.name, w.threads, w.warm, w.pid)
             for w in sorted(self._workers.values(), key=lambda w: w.address)
         ]
-
-    async def wait_ready(self) -> None:
-        await self._ready.wait()
 
     # ------------------------------------------------------------------------- lifecycle
 
@@ -225,14 +203,25 @@ class DaskWorkers:
     # --------------------------------------------------------------------------- running
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
-        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
+        """(`progress` is not reported from here: a task's progress arrives with its end.) A
+        task with an `affinity` prefers one worker, the same for the same wing while the
+        cluster keeps its workers (rendezvous hashing), which the scheduler may pass over."""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._client is None:
                 raise NotReady("the service is shutting down")
-            future = self._client.submit(fn, task, pure=False)
+            preferred = _rendezvous(affinity, [a for a, w in self._workers.items() if w.warm])
+            placement: dict[str, Any] = {}
+            if preferred is not None:
+                placement = {"workers": [preferred], "allow_other_workers": True}
+            future = self._client.submit(fn, task, pure=False, **placement)
             return await self._outcome(future, timeout)
 
     async def _outcome(self, future: Any, timeout: float) -> Any:
@@ -252,6 +241,14 @@ class DaskWorkers:
             if key in keys:
                 self.metrics.worker_restarts.labels("timeout").inc()
                 await self._client.restart_workers([address], raise_for_error=False)
+
+
+def _rendezvous(affinity: bytes | None, addresses: list[str]) -> str | None:
+    """The worker a wing prefers: the address with the highest hash of (wing, address), so a
+    worker that joins or leaves moves only its own share of the wings."""
+    if affinity is None or not addresses:
+        return None
+    return max(addresses, key=lambda a: hashlib.blake2b(affinity + a.encode()).digest())
 
 
 def _log_failure(task: asyncio.Future[Any]) -> None:

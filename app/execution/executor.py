@@ -17,8 +17,8 @@ from typing import Any, TypeVar
 
 from app.execution import worker
 from app.execution.pool import (
+    BackendState,
     BudgetExceeded,
-    Capacity,
     ClusterWorkerInfo,
     NotReady,
     Progress,
@@ -33,35 +33,13 @@ log = logging.getLogger(__name__)
 T = TypeVar("T")
 
 
-class ExecutorWorkers:
+class ExecutorWorkers(BackendState):
     def __init__(self, settings: Settings, factory: Callable[[Settings], Executor]) -> None:
-        self.settings = settings
+        super().__init__(settings, settings.workers * settings.tasks_per_worker)
         self.factory = factory
-        self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(settings.workers * settings.tasks_per_worker)
         self._executor: Executor | None = None
         self._in_flight: set[Future[Any]] = set()
-        self._ready = asyncio.Event()
-        self._started = False
-        self._closing = False
-        self._detail = "not started"
         self._warming: asyncio.Task[None] | None = None
-
-    @property
-    def ready(self) -> bool:
-        return self._ready.is_set() and not self._closing
-
-    @property
-    def started(self) -> bool:
-        return self._started
-
-    @property
-    def detail(self) -> str:
-        return self._detail
-
-    @property
-    def capacity(self) -> int:
-        return self._slots.size
 
     @property
     def parallelism(self) -> int:
@@ -75,9 +53,6 @@ class ExecutorWorkers:
 
     def cluster(self) -> list[ClusterWorkerInfo] | None:
         return None
-
-    async def wait_ready(self) -> None:
-        await self._ready.wait()
 
     async def start(self) -> None:
         self._executor = self.factory(self.settings)
@@ -112,9 +87,15 @@ class ExecutorWorkers:
         self._detail = "closed"
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
-        """(`progress` is not reported from here: a task's progress arrives with its end.)"""
+        """(`progress` is not reported from here: a task's progress arrives with its end; an
+        executor chooses its own worker, whatever the `affinity`.)"""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing or self._executor is None:

@@ -38,7 +38,9 @@ from app.metrics import Metrics
 from app.settings import Settings
 
 __all__ = [
+    "affinity_of",
     "Backend",
+    "BackendState",
     "Progress",
     "Capacity",
     "ClusterWorkerInfo",
@@ -155,6 +157,53 @@ class Capacity:
                 waiter.set_result(None)
 
 
+def affinity_of(task: Any) -> bytes | None:
+    """The wing a task asks about (its `Wing.key`), or None (a batch's chunk of many wings).
+
+    A worker's solver cache keeps what a wing's answers share and rebuild bit for bit (its
+    jig, its branch from the jig, its trimmed divergence limit, its compiled mesh): the same
+    wing asked again, at other airspeeds, answers sooner on the worker that answered it
+    before. Only where a task runs depends on it, never its answer."""
+    wing = getattr(task, "wing", None)
+    key = getattr(wing, "key", None)
+    return key if isinstance(key, bytes) else None
+
+
+class BackendState:
+    """What every backend keeps and reports alike: its readiness, whether it has been ready,
+    what it is doing (`detail`), and the slots of the tasks it runs or holds."""
+
+    def __init__(self, settings: Settings, slots: int, detail: str = "not started") -> None:
+        self.settings = settings
+        self.warm_stations = tuple(settings.warm_stations)
+        self._slots = Capacity(slots)
+        self._ready = asyncio.Event()
+        self._started = False
+        self._closing = False
+        self._detail = detail
+
+    @property
+    def ready(self) -> bool:
+        return self._ready.is_set() and not self._closing
+
+    @property
+    def started(self) -> bool:
+        """Has been ready at least once (until then a task is refused with `NotReady`)."""
+        return self._started
+
+    @property
+    def detail(self) -> str:
+        return self._detail
+
+    @property
+    def capacity(self) -> int:
+        """Tasks it runs or holds at once."""
+        return self._slots.size
+
+    async def wait_ready(self) -> None:
+        await self._ready.wait()
+
+
 class Backend(Protocol):
     """Where tasks run. `attempt` runs one task once (see the module docstring for its errors)."""
 
@@ -184,10 +233,17 @@ class Backend(Protocol):
     async def wait_ready(self) -> None: ...
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
         """Run `fn(task)` once (`fn(task, progress)` with `progress`, which the backend calls
-        on the event loop as the worker reports, where it can)."""
+        on the event loop as the worker reports, where it can); `affinity`: the task's wing,
+        whose worker to prefer, where the solver's cache may already hold its jig, branches
+        and limits (`affinity_of`)."""
         ...
 
     async def close(self) -> None: ...
@@ -350,7 +406,7 @@ class WorkerPool:
             if self._closing:
                 raise NotReady("the service is shutting down")
             try:
-                return await backend.attempt(fn, task, timeout, progress)
+                return await backend.attempt(fn, task, timeout, progress, affinity_of(task))
             except BudgetExceeded:
                 self.metrics.solves.labels(kind, "timeout").inc()
                 raise

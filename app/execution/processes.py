@@ -35,6 +35,7 @@ import pickle
 import signal
 import struct
 import time
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
@@ -44,8 +45,8 @@ from typing import Any, TypeVar
 from app.execution import worker
 from app.execution.pool import (
     THREAD_VARIABLES,
+    BackendState,
     BudgetExceeded,
-    Capacity,
     ClusterWorkerInfo,
     Collateral,
     NotReady,
@@ -58,6 +59,8 @@ from app.settings import Settings
 __all__ = ["LocalWorkers", "serve"]
 
 log = logging.getLogger(__name__)
+# Wings a worker remembers having run: as many as the service keeps built (`Wing.__kept__`).
+_REMEMBERED_WINGS = 64
 
 T = TypeVar("T")
 
@@ -200,48 +203,43 @@ class _Worker:
     exitcode: int | None = None
     process_ended: bool = False
     gone: asyncio.Event = field(default_factory=asyncio.Event)
+    # The wings it ran last (`app.execution.pool.affinity_of`), least recent first.
+    wings: OrderedDict[bytes, None] = field(default_factory=OrderedDict)
 
     @property
     def pid(self) -> int:
         return int(self.process.pid or 0)
 
+    def recency(self, wing: bytes | None) -> int:
+        """How recently it ran `wing`: its place among the wings it remembers (1 the
+        oldest), 0 if it does not remember it."""
+        if wing is None or wing not in self.wings:
+            return 0
+        return list(self.wings).index(wing) + 1
 
-class LocalWorkers:
+    def ran(self, wing: bytes | None) -> None:
+        if wing is None:
+            return
+        self.wings[wing] = None
+        self.wings.move_to_end(wing)
+        while len(self.wings) > _REMEMBERED_WINGS:
+            self.wings.popitem(last=False)
+
+
+class LocalWorkers(BackendState):
     """`FLEXWING_WORKERS` local worker processes, replaced as a whole when one is lost."""
 
     def __init__(self, settings: Settings, metrics: Metrics) -> None:
-        self.settings = settings
+        super().__init__(settings, settings.workers * settings.tasks_per_worker)
         self.metrics = metrics
-        self.warm_stations = tuple(settings.warm_stations)
-        self._slots = Capacity(settings.workers * settings.tasks_per_worker)
         self._workers: list[_Worker] = []
         self._generation = 0
         self._seq = 0
-        self._ready = asyncio.Event()
-        self._started = False
-        self._closing = False
-        self._detail = "not started"
         self._loop: asyncio.AbstractEventLoop | None = None
         self._context: Any = None
         self._connecting: set[asyncio.Task[None]] = set()
 
     # -------------------------------------------------------------------- what it reports
-
-    @property
-    def ready(self) -> bool:
-        return self._ready.is_set() and not self._closing
-
-    @property
-    def started(self) -> bool:
-        return self._started
-
-    @property
-    def detail(self) -> str:
-        return self._detail
-
-    @property
-    def capacity(self) -> int:
-        return self._slots.size
 
     @property
     def parallelism(self) -> int:
@@ -260,9 +258,6 @@ class LocalWorkers:
 
     def cluster(self) -> list[ClusterWorkerInfo] | None:
         return None
-
-    async def wait_ready(self) -> None:
-        await self._ready.wait()
 
     # ------------------------------------------------------------------------- lifecycle
 
@@ -483,23 +478,35 @@ class LocalWorkers:
     # --------------------------------------------------------------------------- running
 
     async def attempt(
-        self, fn: Callable[..., T], task: Any, timeout: float, progress: Progress | None = None
+        self,
+        fn: Callable[..., T],
+        task: Any,
+        timeout: float,
+        progress: Progress | None = None,
+        affinity: bytes | None = None,
     ) -> T:
-        """Run `fn(task)` once in the least busy worker, within `timeout` s of its start
-        (`fn(task, report)` with `progress`, called here as the worker reports)."""
+        """Run `fn(task)` once in the least busy worker (of those, the one that last ran
+        `affinity`'s wing), within `timeout` s of its start (`fn(task, report)` with
+        `progress`, called here as the worker reports)."""
         async with self._slots.slot():
             await self._ready.wait()
             if self._closing:
                 raise NotReady("the service is shutting down")
-            w = self._least_busy()
+            w = self._least_busy(affinity)
             dispatch = self._hand_over(w, fn, task, progress)
             return await self._outcome(w, dispatch, timeout)  # type: ignore[no-any-return]
 
-    def _least_busy(self) -> _Worker:
+    def _least_busy(self, affinity: bytes | None = None) -> _Worker:
+        """The worker with the fewest tasks; of those, the one that ran `affinity`'s wing
+        most recently (a busier worker is never chosen for its cache)."""
         alive = [w for w in self._workers if not w.exited and w.generation == self._generation]
         if not alive:
             raise Collateral("the worker pool is being replaced")
-        return min(alive, key=lambda w: len(w.assigned))
+        fewest = min(len(w.assigned) for w in alive)
+        idle = [w for w in alive if len(w.assigned) == fewest]
+        chosen = max(idle, key=lambda w: w.recency(affinity))
+        chosen.ran(affinity)
+        return chosen
 
     def _hand_over(
         self, w: _Worker, fn: Callable[..., Any], task: Any, progress: Progress | None

@@ -5,6 +5,6 @@ API's models; `store`: the SQLite database; `manager`: queueing, running, cancel
 """
 
 from app.jobs.manager import JobManager
-from app.jobs.operations import OPERATIONS, Operation, register
+from app.jobs.operations import JOB_KINDS, JobKind, register
 
-__all__ = ["OPERATIONS", "JobManager", "Operation", "register"]
+__all__ = ["JOB_KINDS", "JobKind", "JobManager", "register"]

@@ -7,7 +7,7 @@ import asyncio
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from app.jobs.operations import Operation
+from app.jobs.operations import JobKind
 from app.jobs.store import Claim, JobRow
 from app.service import Service
 
@@ -29,7 +29,7 @@ class LiveJob:
     """A job running in this replica, in memory (`row()` is its store row)."""
 
     id: str
-    operation: Operation
+    operation: JobKind
     request: Any  # the validated request model; None once finished, or adopted
     created: float  # [s since the epoch]
     total: int
@@ -73,7 +73,7 @@ class LiveJob:
         self.changed = asyncio.Event()
 
     @classmethod
-    def claimed(cls, claim: Claim, operation: Operation | None, request: Any) -> LiveJob:
+    def claimed(cls, claim: Claim, operation: JobKind | None, request: Any) -> LiveJob:
         """The job of a claim (`Store.claim`) as it is taken up here: `request` if this replica
         still holds it (it accepted the job), else read from the claim later; a batch's
         progress is the items answered so far."""
@@ -132,14 +132,14 @@ class RunContext:
         self.manager.progressed(self.job, done)
 
 
-def unknown_operation(name: str) -> Operation:
+def unknown_operation(name: str) -> JobKind:
     """A stand-in for an operation this replica does not know (a newer replica's job): the
     job is failed, never run."""
 
     async def run(context: Any, request: Any) -> None:
         return None
 
-    return Operation(
+    return JobKind(
         name=name,
         summary="unknown",
         request_model=object,  # type: ignore[arg-type]

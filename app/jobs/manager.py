@@ -34,7 +34,7 @@ from typing import Any
 
 from app.jobs.live import LiveJob, RunContext
 from app.jobs.models import FINISHED_STATES, JOB_STATES
-from app.jobs.operations import OPERATIONS, Operation
+from app.jobs.operations import JOB_KINDS, JobKind
 from app.jobs.signals import on_shutdown_signals
 from app.jobs.store import Claim, JobRow, Store, interrupted_problem, new_job_id, request_json
 from app.metrics import Metrics
@@ -84,7 +84,7 @@ class JobManager:
         settings: Settings,
         service: Service,
         metrics: Metrics,
-        operations: Mapping[str, Operation] = OPERATIONS,
+        operations: Mapping[str, JobKind] = JOB_KINDS,
         store: Store | None = None,
     ) -> None:
         self.settings = settings

@@ -1,16 +1,7 @@
-"""What a job can run: a small registry, one `Operation` per name.
-
-Adding one (as ``optimize`` below) is a few lines, before
-`app.main.create_app` builds the routes (the POST /jobs body model is made from the registry)::
-
-    async def _run_optimize(context: JobContext, request: OptimizeRequest) -> str:
-        return (await context.service.answer("optimize", request)).decode()
-
-    register(Operation(
-        name="optimize", summary="one optimization (POST /optimize)",
-        request_model=OptimizeRequest, request_description="A POST /optimize body.",
-        units=lambda request: 1, check=lambda request, settings: None, run=_run_optimize,
-    ))
+"""What a job can run: one `JobKind` per name. Every operation of `solver.OPERATION_TABLE` is
+one, derived from its row (it answers what its endpoint answers, its progress counts the row's
+parts); `batch` (many solves) is the one kind of its own. The POST /jobs body model is made from
+this registry, before `app.main.create_app` builds the routes; `register` adds a kind.
 """
 
 from __future__ import annotations
@@ -24,21 +15,15 @@ from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 from pydantic import BaseModel, Discriminator, Field, Tag, create_model
 from pydantic.json_schema import SkipJsonSchema
 
+import solver
 from app.jobs.models import BatchRequest, Request
 from app.problems import FieldError, Problem, problem_body
-from app.schemas import (
-    ControlsRequest,
-    FlutterRequest,
-    OptimizeRequest,
-    RollRequest,
-    SolveRequest,
-    SweepRequest,
-)
+from app.schemas import REQUESTS, SolveRequest
 from app.schemas.limits import station_and_point_errors
-from app.service import Service, task_of
+from app.service import Service, parts_of, task_of
 from app.settings import Settings
 
-__all__ = ["OPERATIONS", "JobContext", "Operation", "register", "submission_type"]
+__all__ = ["JOB_KINDS", "JobContext", "JobKind", "register", "submission_type"]
 
 T = TypeVar("T")
 
@@ -90,7 +75,7 @@ class JobContext(Protocol):
 
 
 @dataclass(frozen=True)
-class Operation:
+class JobKind:
     """One kind of job.
 
     `units`: its progress total for a request; `check`: settings-dependent validation at
@@ -111,11 +96,11 @@ class Operation:
     result: Callable[[bytes], str] | None = None
 
 
-OPERATIONS: dict[str, Operation] = {}
+JOB_KINDS: dict[str, JobKind] = {}
 
 
-def register(operation: Operation) -> None:
-    OPERATIONS[operation.name] = operation
+def register(kind: JobKind) -> None:
+    JOB_KINDS[kind.name] = kind
 
 
 # ---------------------------------------------------------------------------- solve, sweep
@@ -154,11 +139,13 @@ def _check(request: Any, settings: Settings) -> None:
     task_of(request, settings)  # raises the endpoint's invalid-input problem
 
 
-def _sweep_points(request: SweepRequest | FlutterRequest | ControlsRequest) -> int:
-    """The airspeeds of a sweep, a flutter analysis or a control sweep: its progress counts
-    them."""
-    velocities = request.velocities
-    return len(velocities) if isinstance(velocities, list) else velocities.count
+def _parts(name: str) -> Callable[[Any], int]:
+    """The progress total of a request to the operation `name`: its solver input's parts."""
+
+    def units(request: Any) -> int:
+        return parts_of(name, request.to_solver())
+
+    return units
 
 
 # ----------------------------------------------------------------------------------- batch
@@ -293,80 +280,22 @@ async def _run_batch(context: JobContext, request: BatchRequest) -> None:
     return None
 
 
-register(
-    Operation(
-        name="solve",
-        summary="one equilibrium (POST /solve)",
-        request_model=SolveRequest,
-        request_description="A POST /solve body.",
-        units=lambda request: 1,
-        check=_check,
-        run=_answering("solve"),
-        result=_text,
+for _operation in solver.OPERATION_TABLE:
+    register(
+        JobKind(
+            name=_operation.name,
+            summary=f"POST /{_operation.name} ({_operation.summary[0].lower()}"
+            f"{_operation.summary[1:]})",
+            request_model=REQUESTS[_operation.name],
+            request_description=f"A POST /{_operation.name} body.",
+            units=_parts(_operation.name),
+            check=_check,
+            run=_answering(_operation.name),
+            result=_text,
+        )
     )
-)
 register(
-    Operation(
-        name="sweep",
-        summary="a sweep over airspeeds (POST /sweep)",
-        request_model=SweepRequest,
-        request_description="A POST /sweep body.",
-        units=_sweep_points,
-        check=_check,
-        run=_answering("sweep"),
-        result=_text,
-    )
-)
-register(
-    Operation(
-        name="optimize",
-        summary="one optimisation (POST /optimize)",
-        request_model=OptimizeRequest,
-        request_description="A POST /optimize body.",
-        units=lambda request: 1,
-        check=_check,
-        run=_answering("optimize"),
-        result=_text,
-    )
-)
-register(
-    Operation(
-        name="flutter",
-        summary="a flutter analysis (POST /flutter)",
-        request_model=FlutterRequest,
-        request_description="A POST /flutter body.",
-        units=_sweep_points,
-        check=_check,
-        run=_answering("flutter"),
-        result=_text,
-    )
-)
-register(
-    Operation(
-        name="roll",
-        summary="a roll response (POST /roll)",
-        request_model=RollRequest,
-        request_description="A POST /roll body.",
-        units=lambda request: 1,
-        check=_check,
-        run=_answering("roll"),
-        result=_text,
-    )
-)
-register(
-    Operation(
-        name="controls",
-        summary="control effectiveness against airspeed (POST /controls)",
-        request_model=ControlsRequest,
-        request_description="A POST /controls body.",
-        units=_sweep_points,
-        check=_check,
-        run=_answering("controls"),
-        result=_text,
-    )
-)
-register(
-    Operation(
+    JobKind(
         name="batch",
         summary="up to 10,000 independent solves",
         request_model=BatchRequest,
@@ -382,7 +311,7 @@ register(
 # ------------------------------------------------------------------ the POST /jobs body
 
 
-def submission_type(operations: Mapping[str, Operation]) -> Any:
+def submission_type(operations: Mapping[str, JobKind]) -> Any:
     """The POST /jobs body: one model per operation, told apart by `operation`.
 
     Validation errors name fields from the body's root (`request.items[3].wing.chord[2]`): the
@@ -408,7 +337,7 @@ def submission_type(operations: Mapping[str, Operation]) -> Any:
     return Annotated[Union[tuple(members)], Discriminator(tag)]  # noqa: UP007
 
 
-def _submission_model(operation: Operation) -> type[BaseModel]:
+def _submission_model(operation: JobKind) -> type[BaseModel]:
     name = operation.name
     model: type[BaseModel] = create_model(
         f"{name.capitalize()}JobSubmission",

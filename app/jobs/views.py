@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from datetime import UTC, datetime
 from typing import Any
 
-from app.jobs.operations import Operation
+from app.jobs.operations import JobKind
 
 __all__ = ["job_links", "job_view"]
 
@@ -29,7 +29,7 @@ def _iso(seconds: float | None) -> str | None:
     return datetime.fromtimestamp(seconds, tz=UTC).isoformat().replace("+00:00", "Z")
 
 
-def job_view(row: Mapping[str, Any], operations: Mapping[str, Operation]) -> dict[str, Any]:
+def job_view(row: Mapping[str, Any], operations: Mapping[str, JobKind]) -> dict[str, Any]:
     """A job (a database row or `LiveJob.row()`) as the API shows it, without its result."""
     job_id = row["id"]
     problem = row.get("problem")

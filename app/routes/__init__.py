@@ -1,7 +1,8 @@
-"""HTTP routes, one module per resource: /solve and /sweep (tag equilibrium), /optimize
-(design), /jobs (jobs), the health checks (operations) and the page; `responses` describes
-their error responses."""
+"""HTTP routes: every operation of `solver.OPERATION_TABLE` (`operations`, one router each,
+derived from its row), /jobs (`jobs`), /wing/stations (`wing`: a wing as the solver takes it),
+the health checks (`health`) and the page (`page`); `answers` is how an operation answers (at
+once or as a job), `responses` its error responses."""
 
-from app.routes import health, jobs, optimize, page, responses, solve, sweep
+from app.routes import health, jobs, operations, page, responses, wing
 
-__all__ = ["health", "jobs", "optimize", "page", "responses", "solve", "sweep"]
+__all__ = ["health", "jobs", "operations", "page", "responses", "wing"]

@@ -4,8 +4,6 @@ Also `respond_async`, the dependency that turns a /sweep call with ``Prefer: res
 (RFC 7240) into a job: 202 with Location, as POST /jobs answers.
 """
 
-import base64
-import binascii
 import email.message
 import json
 from collections.abc import AsyncIterator, Awaitable, Callable, Mapping
@@ -19,9 +17,9 @@ from pydantic import TypeAdapter, ValidationError
 from app.jobs import streams
 from app.jobs.manager import JobManager
 from app.jobs.models import STUDY_BATCH, JobList, JobStatus
-from app.jobs.operations import Operation, submission_type
+from app.jobs.operations import JobKind, submission_type
 from app.jobs.views import job_view
-from app.problems import FieldError, Problem, ProblemDetails
+from app.problems import Problem, ProblemDetails
 from app.schemas import SOLVE_EXAMPLES, SWEEP_EXAMPLES
 from app.security import owner as owner_of
 from app.security import principal
@@ -42,8 +40,24 @@ Principal = Annotated[str, Depends(principal)]
 _LOCATION: dict[str, Any] = {
     "Location": {"description": "/jobs/{id}", "schema": {"type": "string"}}
 }
+# OpenAPI links from an accepted job to what can be asked of it: clients, generators and
+# stateful fuzzers follow them from the 202's `id`.
+_JOB_LINKS: dict[str, Any] = {
+    name: {
+        "operationId": operation,
+        "parameters": {"job_id": "$response.body#/id"},
+        "description": description,
+    }
+    for name, operation, description in (
+        ("GetJob", "get_job", "The job's state, progress, and result or problem."),
+        ("CancelJob", "cancel_job", "Cancel the job."),
+        ("JobEvents", "job_events", "The job's progress as Server-Sent Events."),
+        ("JobItems", "job_items", "A batch job's answered items as NDJSON."),
+    )
+}
 ACCEPTED: dict[int | str, dict[str, Any]] = {
     202: {
+        "links": _JOB_LINKS,
         "model": JobStatus,
         "description": (
             "Accepted as a job: with Prefer: respond-async, or when the answer was not ready "
@@ -85,7 +99,7 @@ _CANCEL_RESPONSES: Responses = {
     ),
 }
 _SUBMIT_RESPONSES: Responses = {
-    202: {"headers": _LOCATION},
+    202: {"headers": _LOCATION, "links": _JOB_LINKS},
     413: _problem("Body larger than FLEXWING_MAX_JOB_BODY_BYTES (/problems/body-too-large)."),
     422: _problem(
         "Invalid body (/problems/invalid-input): `errors` names each bad field from the body's "
@@ -122,25 +136,25 @@ async def _job_or_404(
 # ------------------------------------------------------------------------ pagination cursor
 
 
+# A page's end as `created~id`: the creation time [s since the epoch] as its shortest exact
+# decimal and the job's id, so every string of this pattern is a cursor (the document says
+# exactly what is accepted; an old base64 cursor is refused, and its client starts again).
+CURSOR_PATTERN = r"^[0-9]{1,12}(\.[0-9]{1,17})?~[A-Za-z0-9_-]{1,64}$"
+
+
 def _cursor(row: Mapping[str, Any]) -> str:
-    raw = json.dumps([row["created"], row["id"]]).encode()
-    return base64.urlsafe_b64encode(raw).decode().rstrip("=")
+    return f"{float(row['created'])!r}~{row['id']}"
 
 
 def _parse_cursor(cursor: str) -> tuple[float, str]:
-    try:
-        raw = base64.urlsafe_b64decode(cursor + "=" * (-len(cursor) % 4))
-        created, job_id = json.loads(raw)
-        return float(created), str(job_id)
-    except (ValueError, TypeError, binascii.Error):
-        reason = "is not a cursor from a previous page's `next`"
-        raise Problem.invalid([FieldError("query.cursor", reason)]) from None
+    created, _, job_id = cursor.partition("~")
+    return float(created), job_id
 
 
 # --------------------------------------------------------------------------- the router
 
 
-def make_router(operations: Mapping[str, Operation]) -> APIRouter:
+def make_router(operations: Mapping[str, JobKind]) -> APIRouter:
     """The jobs routes; POST /jobs takes any operation of `operations`."""
     submission = submission_type(operations)
     router = APIRouter(tags=["jobs"])
@@ -179,7 +193,7 @@ def make_router(operations: Mapping[str, Operation]) -> APIRouter:
     return router
 
 
-def _examples(operations: Mapping[str, Operation]) -> dict[str, Any]:
+def _examples(operations: Mapping[str, JobKind]) -> dict[str, Any]:
     found = {
         "batch": ("Three speeds of the study's wing as one batch", STUDY_BATCH),
         "solve": ("The study's wing at 10 m/s", SOLVE_EXAMPLES["study"]["value"]),
@@ -205,7 +219,12 @@ def _add_list_route(router: APIRouter) -> None:
         owner: Principal,
         limit: Annotated[int, Query(ge=1, le=200, description="[-] jobs per page.")] = 50,
         cursor: Annotated[
-            str | None, Query(max_length=200, description="`next` of the previous page.")
+            str | None,
+            Query(
+                max_length=100,
+                pattern=CURSOR_PATTERN,
+                description="`next` of the previous page (its creation time and id).",
+            ),
         ] = None,
         status: Annotated[
             Literal["queued", "running", "succeeded", "failed", "cancelled"] | None,

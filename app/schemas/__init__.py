@@ -7,6 +7,7 @@ from __future__ import annotations
 from app.schemas.derive import RequestModel, request_model, to_solver
 from app.schemas.examples import (
     CONTROLS_EXAMPLES,
+    EXAMPLES,
     FLUTTER_EXAMPLES,
     OPTIMIZE_EXAMPLES,
     ROLL_EXAMPLES,
@@ -16,6 +17,7 @@ from app.schemas.examples import (
 )
 from app.schemas.health import ClusterWorker, HealthResponse, ReadyResponse
 from app.schemas.requests import (
+    REQUESTS,
     ControlsRequest,
     FlutterRequest,
     OptimizeRequest,
@@ -27,6 +29,7 @@ from app.schemas.requests import (
 from app.schemas.responses import (
     API_ONLY_FIELDS,
     MODEL_NAMES,
+    RESPONSES,
     Answer,
     ControlsResponse,
     FlutterResponse,
@@ -41,6 +44,9 @@ from app.schemas.responses import (
 
 __all__ = [
     "API_ONLY_FIELDS",
+    "EXAMPLES",
+    "REQUESTS",
+    "RESPONSES",
     "CONTROLS_EXAMPLES",
     "FLUTTER_EXAMPLES",
     "MODEL_NAMES",

@@ -311,7 +311,8 @@ def _annotation(spec: solver.Spec, hint: Any) -> Any:
             Annotated[
                 list[_number(spec)],  # type: ignore[misc]
                 Field(min_length=solver.MIN_STATIONS, max_length=MAX_ARRAY_LENGTH),
-                Field(json_schema_extra=STATIONS_LIMIT),
+                # The root station is at 0 (what JSON Schema can say of an increasing list).
+                Field(json_schema_extra=STATIONS_LIMIT | {"prefixItems": [{"const": 0.0}]}),
                 Tag("@list"),
             ]
             | Annotated[spacing, Tag("@object")],
@@ -503,8 +504,8 @@ def _model(cls: type, way: str | None, without: tuple[str, ...]) -> type[Request
 
 def _builder(cls: type) -> Callable[..., Any]:
     """What builds `cls` from its fields: its `create` (which validates and normalises) when
-    that takes nothing but fields, else the class itself (a value its owner resolves, as
-    `Wing.create` resolves the wing's `MassModel` for its stations)."""
+    that takes nothing but fields; else its fields as given, a mapping its owner resolves once
+    (as `Wing.create` resolves the wing's `MassModel` for its stations)."""
     create = getattr(cls, "create", None)
     if create is None:
         return cls
@@ -515,7 +516,7 @@ def _builder(cls: type) -> Callable[..., Any]:
         if parameter.default is inspect.Parameter.empty
         and parameter.kind is not inspect.Parameter.VAR_KEYWORD
     ]
-    return create if set(required) <= names else cls
+    return create if set(required) <= names else dict
 
 
 def _has_none_default(cls: type, name: str) -> bool:

@@ -12,6 +12,7 @@ from solver import ISA_SEA_LEVEL_DENSITY
 
 __all__ = [
     "CONTROLS_EXAMPLES",
+    "EXAMPLES",
     "FLUTTER_EXAMPLES",
     "GOLAND_FLUTTER",
     "OPTIMIZE_EXAMPLES",
@@ -253,4 +254,16 @@ CONTROLS_EXAMPLES: dict[str, Any] = {
             "velocities": [10.0, 12.0, 14.0, 16.0, 18.0, 20.0],
         },
     },
+}
+
+# Operation name -> its examples ({name: {summary, value}}): what /docs offers, the page loads,
+# and the first of which the request model shows as its example. Every operation of
+# `solver.OPERATION_TABLE` has some (tests/app/schemas/test_examples.py).
+EXAMPLES: dict[str, dict[str, Any]] = {
+    "solve": SOLVE_EXAMPLES,
+    "sweep": SWEEP_EXAMPLES,
+    "optimize": OPTIMIZE_EXAMPLES,
+    "flutter": FLUTTER_EXAMPLES,
+    "roll": ROLL_EXAMPLES,
+    "controls": CONTROLS_EXAMPLES,
 }

@@ -32,6 +32,7 @@ __all__ = [
     "API_ONLY_FIELDS",
     "Answer",
     "MODEL_NAMES",
+    "RESPONSES",
     "ControlsResponse",
     "FlutterResponse",
     "OptimizeResponse",
@@ -183,10 +184,14 @@ class Answer:
         return len(self.head) + 64 * len(self.info or ()) + 200
 
 
-# Build the two top-level models at import: every nested one follows.
-SolveResponse = response_model(solver.Equilibrium)
-SweepResponse = response_model(solver.AirspeedSweep)
-OptimizeResponse = response_model(solver.OptimalDesign)
-FlutterResponse = response_model(solver.FlutterResult)
-RollResponse = response_model(solver.RollResponse)
-ControlsResponse = response_model(solver.ControlSweep)
+# Operation name -> its response model, built at import from its result type (every nested
+# model follows).
+RESPONSES: dict[str, type[BaseModel]] = {
+    operation.name: response_model(operation.result) for operation in solver.OPERATION_TABLE
+}
+SolveResponse = RESPONSES["solve"]
+SweepResponse = RESPONSES["sweep"]
+OptimizeResponse = RESPONSES["optimize"]
+FlutterResponse = RESPONSES["flutter"]
+RollResponse = RESPONSES["roll"]
+ControlsResponse = RESPONSES["controls"]

@@ -38,6 +38,14 @@ Input: a case file (JSON object)
     sweep_deg             [deg] sweep of the elastic axis, positive aft (default 0). The elastic
                           axis is the line x = y tan(sweep) in the wing plane; sections stay
                           streamwise; the beam runs along the axis, arc length s = y / cos(sweep).
+    dihedral_deg          [deg] dihedral of the wing's plane, tips up (default 0): the flat
+                          (swept) half-wing, heave and twist included, is turned about the x axis
+                          through the root, every section's xyz_le R_x(dihedral) of the flat
+                          one; `span` and the stations y are along the wing's plane (the
+                          projected semispan is span / 2 cos(dihedral)). The beam lives in the
+                          plane: e_s = (sin(sweep), cos(sweep) cos(dihedral), cos(sweep)
+                          sin(dihedral)), n = (0, -sin(dihedral), cos(dihedral)) the heave's
+                          direction, and S, M use the panels' normal force F . n
     chordwise_resolution  int 1..8, chordwise panels per strip (default 1; cosine spacing)
     jig_twist_deg         (N,) [deg] built-in streamwise twist of the jig (default zeros)
     torque_axis           "undeformed" (default) or "deformed": the load arms are measured from
@@ -76,7 +84,8 @@ Output: a reference file (JSON object, indent 1)
     format        "extended-1"
     model         sweep_deg, chordwise_resolution, airfoil, torque_axis, jig_twist_deg (N,),
                   s (N,) [m] beam arc length y / cos(sweep), ea_x (N,) [m] y tan(sweep),
-                  e_s: the axis direction (sin, cos, 0), ipopt_options
+                  e_s: the axis direction (sin, cos, 0) (turned by the dihedral), ipopt_options;
+                  dihedral_deg and n (the wing plane's normal) when the case gives a dihedral
     camber_line   {"x": (k+1,) chordwise node positions x/c, "camber": (k+1,) camber/c that
                   AeroSandbox places there (Airfoil.local_camber, from its coordinates); the same
                   at every station (one airfoil); placed along the section's scaled normal,
@@ -115,6 +124,7 @@ if hasattr(casadi.GlobalOptions, "setNumpyMode"):
 
 EXTENDED_KEYS = (
     "sweep_deg",
+    "dihedral_deg",
     "chordwise_resolution",
     "jig_twist_deg",
     "torque_axis",
@@ -166,6 +176,17 @@ class WingModel:
         self.s = self.ys / self.cos_l if self.swept else self.ys
         self.ea_x = self.ys * self.tan_l if self.swept else np.zeros(N)
 
+        self.dihedral_deg = float(case.get("dihedral_deg", 0.0))
+        if not -45.0 < self.dihedral_deg < 45.0:
+            raise ValueError("dihedral_deg must lie in (-45, 45)")
+        # At dihedral 0 every expression below is the flat wing's (Python branches, as sweep).
+        self.turned = self.dihedral_deg != 0.0
+        gamma = np.radians(self.dihedral_deg)
+        self.cos_d, self.sin_d = float(np.cos(gamma)), float(np.sin(gamma))
+        # The axis direction and the wing plane's normal (the heave's direction), turned.
+        self.e_s = np.array([self.sin_l, self.cos_l * self.cos_d, self.cos_l * self.sin_d])
+        self.normal = np.array([0.0, -self.sin_d, self.cos_d])
+
         self.nc = int(case.get("chordwise_resolution", 1))
         if not 1 <= self.nc <= 8:
             raise ValueError("chordwise_resolution must be an integer in 1..8")
@@ -204,6 +225,9 @@ class WingModel:
             xyz_le += np.array([0, 0, heave[i]])
             if self.swept:  # the elastic-axis point moves to (y tan(sweep), y, 0)
                 xyz_le += np.array([self.ea_x[i], 0, 0])
+            if self.turned:  # the flat half-wing turned about x through the root
+                turn = np.rotation_matrix_3D(angle=np.radians(self.dihedral_deg), axis="x")
+                xyz_le = turn @ xyz_le
             xsecs.append(
                 asb.WingXSec(
                     xyz_le=xyz_le, chord=self.chords[i], twist=twist[i], airfoil=self.airfoil
@@ -238,7 +262,15 @@ class WingModel:
         F = vlm.forces_geometry[:n, :]
         Fz = vlm.forces_geometry[:n, 2]
         r = vlm.vortex_centers[:n, :]
-        if self.swept:
+        if self.turned:
+            # The beam in the wing's plane: arms and torque along the turned e_s, the shear and
+            # bending from the force normal to the plane (EA_i = s_i e_s, as unturned).
+            m = vlm.moments_geometry
+            tau = m[:n, 0] * self.e_s[0] + m[:n, 1] * self.e_s[1] + m[:n, 2] * self.e_s[2]
+            s_panel = r[:, 0] * self.e_s[0] + r[:, 1] * self.e_s[1] + r[:, 2] * self.e_s[2]
+            s_station = self.s
+            Fn = F[:, 1] * self.normal[1] + F[:, 2] * self.normal[2]  # F . n
+        elif self.swept:
             # Torque about the undeformed axis through the origin along e_s: moment about the
             # origin dotted with e_s (the axis point's own term vanishes: EA_i is parallel to e_s).
             m = vlm.moments_geometry
@@ -249,12 +281,21 @@ class WingModel:
             tau = vlm.moments_geometry[:n, 1]
             s_panel = vlm.vortex_centers[:n, 1]
             s_station = self.ys
-        S = self.outboard @ Fz
-        M = self.outboard @ (Fz * s_panel) - s_station * S
+        if not self.turned:
+            Fn = Fz  # the plane's normal is z
+        S = self.outboard @ Fn
+        M = self.outboard @ (Fn * s_panel) - s_station * S
         T = self.outboard @ tau
         if self.torque_axis == "deformed":
-            # Arms from (EA_i + u_i z): T_i -= u_i sum (z x F_p) . e_s; M unchanged (z . e_s = 0).
-            F_perp = F[:, 0] * self.cos_l - F[:, 1] * self.sin_l if self.swept else F[:, 0]
+            # Arms from (EA_i + u_i n): T_i -= u_i sum (n x F_p) . e_s = u_i sum F_p . (e_s x n);
+            # M unchanged (n . e_s = 0).
+            if self.turned:
+                across = np.cross(self.e_s, self.normal)
+                F_perp = F[:, 0] * across[0] + F[:, 1] * across[1] + F[:, 2] * across[2]
+            elif self.swept:
+                F_perp = F[:, 0] * self.cos_l - F[:, 1] * self.sin_l
+            else:
+                F_perp = F[:, 0]
             T = T - heave * (self.outboard @ F_perp)
         return {
             "F": F,
@@ -277,7 +318,9 @@ class WingModel:
                 raise RuntimeError("the VLM did not order the right half-wing's panels root to tip")
             return
         strips = np.arange(n) // nc
-        ok = np.all(vc[:n, 1] > self.ys[strips]) and np.all(vc[:n, 1] < self.ys[strips + 1])
+        # Along the wing's plane (the points turned back by the dihedral).
+        along = vc[:n, 1] * self.cos_d + vc[:n, 2] * self.sin_d if self.turned else vc[:n, 1]
+        ok = np.all(along > self.ys[strips]) and np.all(along < self.ys[strips + 1])
         for i in range(N - 1):
             ok = ok and bool(np.all(np.diff(vc[i * nc : (i + 1) * nc, 0]) > 0))
         ok = ok and bool(np.all(np.abs(vc[n:, 1] + vc[:n, 1]) < 1e-12))  # left half mirrors
@@ -474,7 +517,10 @@ def generate(case: dict, model_class: type[WingModel] = WingModel) -> dict:
 
 
 def _model_fields(model: WingModel, options) -> dict:
-    return {
+    dihedral = {}
+    if "dihedral_deg" in model.case:
+        dihedral = {"dihedral_deg": model.dihedral_deg, "n": _floats(model.normal)}
+    return dihedral | {
         "sweep_deg": model.sweep_deg,
         "chordwise_resolution": model.nc,
         "airfoil": model.airfoil_name,
@@ -482,7 +528,7 @@ def _model_fields(model: WingModel, options) -> dict:
         "jig_twist_deg": _floats(model.jig if model.jig is not None else np.zeros(model.N)),
         "s": _floats(model.s),
         "ea_x": _floats(model.ea_x),
-        "e_s": [model.sin_l, model.cos_l, 0.0],
+        "e_s": _floats(model.e_s) if model.turned else [model.sin_l, model.cos_l, 0.0],
         "ipopt_options": options or {},
     }
 
@@ -541,20 +587,23 @@ def _det_sign_vs_unloaded(jacobian, sol, opti, V) -> int:
 
 def _check_loads(model: WingModel, F, r, S, M, T, heave) -> None:
     """Recompute S, M, T from the numeric panel forces with the literal definitions (a check on
-    the symbolic shortcuts): for station i, the panels of strips >= i, e_s = (sin, cos, 0),
-    r_i = (y_i tan(sweep), y_i, 0) (+ (0, 0, u_i) for the deformed torque axis),
-    M_i = sum Fz ((r_p - r_i) . e_s), T_i = sum ((r_p - r_i) x F_p) . e_s."""
-    e_s = np.array([model.sin_l, model.cos_l, 0.0])
+    the symbolic shortcuts): for station i, the panels of strips >= i, e_s = (sin, cos, 0) and
+    n = (0, 0, 1) turned by the dihedral about x, r_i = R_x (y_i tan(sweep), y_i, 0) (+ u_i n
+    for the deformed torque axis), S_i = sum F . n, M_i = sum (F . n) ((r_p - r_i) . e_s),
+    T_i = sum ((r_p - r_i) x F_p) . e_s."""
+    e_s = np.array([model.sin_l, model.cos_l, 0.0]) if not model.turned else model.e_s
+    normal = np.array([0.0, 0.0, 1.0]) if not model.turned else model.normal
+    turn = np.rotation_matrix_3D(angle=np.radians(model.dihedral_deg), axis="x")
     strips = np.arange(model.n_right) // model.nc
     scale = max(1.0, float(np.max(np.abs(F))) * float(np.max(np.abs(r))))
     for i in range(model.N):
         sel = strips >= i
-        r_i = np.array([model.ea_x[i], model.ys[i], 0.0])
+        r_i = np.asarray(turn, dtype=float) @ np.array([model.ea_x[i], model.ys[i], 0.0])
         if model.torque_axis == "deformed":
-            r_i = r_i + np.array([0.0, 0.0, heave[i]])
+            r_i = r_i + heave[i] * normal
         arm = r[sel] - r_i
-        S_i = float(np.sum(F[sel, 2]))
-        M_i = float(np.sum(F[sel, 2] * (arm @ e_s)))
+        S_i = float(np.sum(F[sel] @ normal))
+        M_i = float(np.sum((F[sel] @ normal) * (arm @ e_s)))
         T_i = float(np.sum(np.cross(arm, F[sel]) @ e_s))
         err = max(abs(S_i - S[i]), abs(M_i - M[i]), abs(T_i - T[i]))
         if err > 1e-10 * scale * max(1, model.n_right):

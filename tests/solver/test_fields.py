@@ -8,10 +8,10 @@ import pickle
 import numpy as np
 import pytest
 
-from solver.airfoil import CamberLine
 from solver.errors import InvalidInput
 from solver.fields import Limits, Spec, digest, number, stations
-from solver.inputs import Wing
+from solver.inputs.airfoil import CamberLine
+from solver.inputs.wing import Wing
 from tests.study import study_wing
 
 CHORD = Spec("m", "chord", Limits(ge=1e-3, le=100.0, why="1 mm to 100 m"), form="per_station")

@@ -50,9 +50,14 @@ function postJSON(path, body, { signal } = {}) {
   return call("POST", path, { body, signal });
 }
 
-/** POST /solve: one equilibrium. */
-export function solve(request, options) {
-  return postJSON("solve", request, options);
+/** POST /<operation> ("solve", "roll"...), answered at once (a synchronous operation). */
+export function answer(operation, request, options) {
+  return postJSON(operation, request, options);
+}
+
+/** POST /wing/stations: the wing's station values as the solver takes them (N each). */
+export function wingStations(wing, options) {
+  return postJSON("wing/stations", { wing }, options);
 }
 
 /** How often a running job is asked for its state [ms]. */
@@ -63,7 +68,7 @@ function pause(ms, signal) {
   return new Promise((resolve, reject) => {
     const aborted = () => {
       clearTimeout(timer);
-      reject(new DOMException("The sweep was cancelled.", "AbortError"));
+      reject(new DOMException("The job was cancelled.", "AbortError"));
     };
     const timer = setTimeout(() => {
       signal?.removeEventListener("abort", aborted);
@@ -73,7 +78,7 @@ function pause(ms, signal) {
   });
 }
 
-/** Map a job's field paths (`request.wing.chord[2]`) to the /sweep body's (`wing.chord[2]`). */
+/** Map a job's field paths (`request.wing.chord[2]`) to its body's (`wing.chord[2]`). */
 function fromJobRequest(error) {
   const errors = error.problem?.errors;
   if (errors?.length) {
@@ -83,34 +88,21 @@ function fromJobRequest(error) {
 }
 
 /**
- * A sweep over airspeeds as a job, reporting progress through `onProgress({done, total, message})`.
+ * An operation as a job ("sweep", "controls", "flutter", "roll", "optimize", "batch"...),
+ * reporting progress through `onProgress({done, total, message})`; `unit` names what the
+ * progress counts ("airspeeds" unless given: "solves" of a batch).
  *
- * POST /jobs submits `{operation: "sweep", request}` (a bad body is its 422 here, a full queue
- * its 503: both thrown as `ProblemError`, field paths stripped of `request.` so they name the
- * sweep's inputs); then GET jobs/{id} every POLL_MS, with the tab's API key (an EventSource could
- * not send it), reporting the job's `progress` until it ends. Resolves with the job's `result`
- * (what POST /sweep answers); a failed job throws its `problem` (what /sweep would have answered)
- * as a `ProblemError`. Aborting `signal` (the page's Cancel) sends DELETE jobs/{id}, best effort,
- * and rejects with an AbortError, as an aborted fetch does.
+ * POST /jobs submits `{operation, request}` (a bad body is its 422 here, a full queue its 503:
+ * both thrown as `ProblemError`, field paths stripped of `request.` so they name the body's
+ * inputs); then GET jobs/{id} every POLL_MS, with the tab's API key (an EventSource could not
+ * send it), reporting the job's `progress` until it ends. Resolves with the job's `result`
+ * (what POST /<operation> answers); a failed job throws its `problem` (what the operation
+ * would have answered) as a `ProblemError`. Aborting `signal` (the page's Cancel) sends DELETE
+ * jobs/{id}, best effort, and rejects with an AbortError, as an aborted fetch does.
  */
-export function runSweep(request, options) {
-  return runJob("sweep", request, options);
-}
-
-/** POST /controls as a job (as runSweep): control effectiveness and reversal against airspeed. */
-export function runControls(request, options) {
-  return runJob("controls", request, options);
-}
-
-/** POST /flutter as a job (as runSweep): the V-g and V-f diagrams of the wing's modes. */
-export function runFlutter(request, options) {
-  return runJob("flutter", request, options);
-}
-
-/** Any airspeed-sweeping operation ("sweep", "controls", "flutter") as a job: see runSweep. */
-export async function runJob(operation, request, { signal, onProgress } = {}) {
-  const count = request.velocities?.count ?? request.velocities?.length ?? 0;
-  onProgress?.({ done: 0, total: count, message: `Submitting ${count} airspeeds` });
+export async function runJob(operation, request, { signal, onProgress, unit = "airspeeds" } = {}) {
+  const count = request.velocities?.count ?? request.velocities?.length ?? request.items?.length ?? 0;
+  onProgress?.({ done: 0, total: count, message: count ? `Submitting ${count} ${unit}` : "Submitting" });
   let job;
   try {
     job = await postJSON("jobs", { operation, request }, { signal });
@@ -135,7 +127,7 @@ export async function runJob(operation, request, { signal, onProgress } = {}) {
         throw new DOMException(`The ${operation} was cancelled.`, "AbortError");
       }
       const doing = job.status === "queued" ? "Queued" : "Solving";
-      onProgress?.({ done, total, message: `${doing}: ${done} of ${total} airspeeds` });
+      onProgress?.({ done, total, message: total > 1 ? `${doing}: ${done} of ${total} ${unit}` : doing });
       await pause(polls ? POLL_MS : POLL_MS / 4, signal); // a short sweep is often done at once
       job = await jobState(url, signal);
     }

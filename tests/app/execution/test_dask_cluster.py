@@ -26,7 +26,7 @@ import httpx
 import pytest
 
 import solver
-from solver.compiled import cache_dir
+from solver.numerics.compiled import cache_dir
 from tests import study
 from tests.app.conftest import ROOT, Server
 

@@ -10,9 +10,12 @@ from typing import Any
 
 import pytest
 
-from app.execution.pool import BudgetExceeded, Capacity, WorkerPool
+import solver
+from app.execution.dask_cluster import _rendezvous
+from app.execution.pool import BudgetExceeded, Capacity, WorkerPool, affinity_of
 from app.metrics import Metrics
 from app.settings import Settings
+from tests import study
 from tests.app import pool_jobs
 
 # Run with the live-server tests, after the fast loop: real worker processes.
@@ -153,3 +156,25 @@ def test_a_tasks_progress_reaches_its_caller_as_the_worker_reports_it() -> None:
 
     assert _with_pool(LOCAL, scenario) == 5
     assert reports == [(done, 5) for done in range(1, 6)]
+
+
+def test_a_tasks_affinity_is_its_wing_and_a_batch_chunk_has_none() -> None:
+    wing = study.study_wing()
+    task = solver.SolveInput(wing, solver.FlightCondition(10.0, 5.0))
+    assert affinity_of(task) == wing.key
+    assert affinity_of((task, task)) is None
+    assert affinity_of(object()) is None
+
+
+def test_a_wing_prefers_one_dask_worker_and_a_leaving_worker_moves_only_its_own() -> None:
+    """Rendezvous hashing: the same wing, the same worker; a worker that leaves moves only
+    the wings it had, spread over the others."""
+    addresses = [f"tcp://127.0.0.1:{port}" for port in (4001, 4002, 4003)]
+    wings = [i.to_bytes(2, "big") for i in range(300)]
+    before = {wing: _rendezvous(wing, addresses) for wing in wings}
+    assert before == {wing: _rendezvous(wing, list(reversed(addresses))) for wing in wings}
+    assert set(before.values()) == set(addresses)  # every worker gets some
+    after = {wing: _rendezvous(wing, addresses[:2]) for wing in wings}
+    moved = {wing for wing in wings if after[wing] != before[wing]}
+    assert moved == {wing for wing in wings if before[wing] == addresses[2]}
+    assert _rendezvous(None, addresses) is None and _rendezvous(b"x", []) is None

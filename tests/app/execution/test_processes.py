@@ -20,7 +20,16 @@ from typing import Any
 import httpx
 import pytest
 
-from app.execution.processes import _frame, _Frames, serve
+from app.execution.processes import (
+    _REMEMBERED_WINGS,
+    LocalWorkers,
+    _frame,
+    _Frames,
+    _Worker,
+    serve,
+)
+from app.metrics import Metrics
+from app.settings import Settings
 from tests import study
 from tests.app.conftest import Server
 
@@ -212,3 +221,44 @@ def test_the_outbox_is_read_as_whole_messages_however_the_pipe_splits_it(chunk: 
     assert got == messages
     frames.connection_lost(None)
     assert ended == [True]
+
+
+# ----------------------------------------------------------------- which worker runs a task
+
+
+def _workers(*loads: int) -> tuple[LocalWorkers, list[_Worker]]:
+    """A pool of worker records (no processes) with `loads` tasks assigned each."""
+    pool = LocalWorkers(Settings(workers=len(loads)), Metrics())
+    workers = [
+        _Worker(0, process=None, assigned={seq: None for seq in range(load)})  # type: ignore[arg-type,misc]
+        for load in loads
+    ]
+    pool._workers = workers
+    return pool, workers
+
+
+def test_a_wing_asked_again_goes_to_the_idle_worker_that_ran_it() -> None:
+    """Issue 40: warm starts per wing reach every operation. A worker's solver cache holds what
+    the wing's answers share (its branch, its trimmed limit): the same wing asked again, both
+    workers idle, goes to the one that ran it (before: always the first worker)."""
+    pool, (first, second) = _workers(0, 0)
+    second.ran(b"wing-a")
+    assert pool._least_busy(b"wing-a") is second
+    assert pool._least_busy(b"wing-b") is first  # a wing neither ran: the first, as before
+    assert pool._least_busy(None) is first
+    assert pool._least_busy(b"wing-b") is first  # and now it remembers it
+    assert first.recency(b"wing-b") > 0 and second.recency(b"wing-b") == 0
+
+
+def test_a_busier_worker_is_never_chosen_for_its_cache() -> None:
+    pool, (first, second) = _workers(0, 1)
+    second.ran(b"wing-a")
+    assert pool._least_busy(b"wing-a") is first
+
+
+def test_a_worker_remembers_its_last_wings_only() -> None:
+    _, (only,) = _workers(0)
+    for i in range(_REMEMBERED_WINGS + 1):
+        only.ran(bytes([i]))
+    assert only.recency(bytes([0])) == 0
+    assert only.recency(bytes([_REMEMBERED_WINGS])) == _REMEMBERED_WINGS

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from app.jobs.live import LiveJob
-from app.jobs.operations import OPERATIONS
+from app.jobs.operations import JOB_KINDS
 
 CLAIM: dict[str, Any] = {
     "id": "job-1",
@@ -25,7 +25,7 @@ CLAIM: dict[str, Any] = {
 
 
 def test_a_batch_taken_up_counts_the_items_answered_before() -> None:
-    job = LiveJob.claimed(CLAIM, OPERATIONS["batch"], None)
+    job = LiveJob.claimed(CLAIM, JOB_KINDS["batch"], None)
     assert (job.done, job.problems, job.answers) == (3, 1, 3)
     assert job.answered == {0, 2, 4} and job.status == "running"
     row = job.row()

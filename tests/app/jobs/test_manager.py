@@ -25,7 +25,7 @@ import pytest
 from pydantic import RootModel
 
 from app.jobs.manager import JobManager
-from app.jobs.operations import JobContext, Operation
+from app.jobs.operations import JobContext, JobKind
 from app.metrics import Metrics
 from app.problems import FieldError, Problem
 from app.settings import Settings
@@ -100,7 +100,7 @@ async def _run_items(context: JobContext, request: Flags) -> None:
         context.item_answered(index, ok, json.dumps({"index": index, "ok": ok}))
 
 
-ECHO = Operation(
+ECHO = JobKind(
     name="echo",
     summary="an echo through the service",
     request_model=Word,
@@ -110,7 +110,7 @@ ECHO = Operation(
     run=_run_echo,
     result=bytes.decode,
 )
-ITEMS = Operation(
+ITEMS = JobKind(
     name="items",
     summary="items answered in place",
     request_model=Flags,
@@ -120,7 +120,7 @@ ITEMS = Operation(
     run=_run_items,
     has_items=True,
 )
-OPERATIONS = {"echo": ECHO, "items": ITEMS}
+JOB_KINDS = {"echo": ECHO, "items": ITEMS}
 
 
 @pytest.fixture
@@ -129,7 +129,7 @@ def sqlite(tmp_path: Any) -> Backend:
 
 
 def _manager(settings: Settings, service: FakeService) -> JobManager:
-    return JobManager(settings, service, Metrics(), OPERATIONS)  # type: ignore[arg-type]
+    return JobManager(settings, service, Metrics(), JOB_KINDS)  # type: ignore[arg-type]
 
 
 @contextlib.asynccontextmanager

@@ -20,7 +20,7 @@ from app.jobs.models import (
     JobState,
     JobStatus,
 )
-from app.jobs.operations import OPERATIONS
+from app.jobs.operations import JOB_KINDS
 from app.jobs.store import interrupted_problem
 from app.jobs.views import job_view
 from app.problems import Problem, problem_body
@@ -98,7 +98,7 @@ ROWS = {
 
 @pytest.mark.parametrize("row", list(ROWS.values()), ids=list(ROWS))
 def test_job_status_describes_the_view_of_a_job_in_every_state(row: dict[str, Any]) -> None:
-    view = job_view(row, OPERATIONS)
+    view = job_view(row, JOB_KINDS)
     status = JobStatus.model_validate(view)
     # Every member of the view is a field of the model and the other way round, but for the
     # result (GET /jobs/{id} only).

@@ -17,24 +17,17 @@ from typing import Any
 import pytest
 from pydantic import TypeAdapter, ValidationError
 
+import solver
 from app.jobs import operations
 from app.jobs.models import STUDY_BATCH, BatchItem, BatchRequest
-from app.jobs.operations import OPERATIONS, Operation, answer_item, patiently, submission_type
+from app.jobs.operations import JOB_KINDS, JobKind, answer_item, patiently, submission_type
 from app.problems import Problem, validation_errors
 from app.schemas import (
+    REQUESTS,
+    RESPONSES,
     Answer,
-    ControlsRequest,
-    ControlsResponse,
-    FlutterRequest,
-    FlutterResponse,
-    OptimizeRequest,
-    OptimizeResponse,
-    RollRequest,
-    RollResponse,
     SolveRequest,
     SolveResponse,
-    SweepRequest,
-    SweepResponse,
 )
 from app.schemas.examples import (
     GOLAND_FLUTTER,
@@ -115,20 +108,15 @@ def _no_equilibrium(name: str, request: Any) -> bytes:
 # ------------------------------------------------------------------------------ registry
 
 REGISTERED = {
-    "solve": (SolveRequest, SolveResponse, False),
-    "sweep": (SweepRequest, SweepResponse, False),
-    "optimize": (OptimizeRequest, OptimizeResponse, False),
-    "flutter": (FlutterRequest, FlutterResponse, False),
-    "roll": (RollRequest, RollResponse, False),
-    "controls": (ControlsRequest, ControlsResponse, False),
+    **{op.name: (REQUESTS[op.name], RESPONSES[op.name], False) for op in solver.OPERATION_TABLE},
     "batch": (BatchRequest, None, True),
 }
 
 
-def test_the_registry_holds_the_endpoints_operations_and_the_batch() -> None:
-    assert set(OPERATIONS) == set(REGISTERED)
+def test_the_registry_holds_every_operation_of_the_table_and_the_batch() -> None:
+    assert set(JOB_KINDS) == set(REGISTERED)
     for name, (request_model, response_model, has_items) in REGISTERED.items():
-        operation = OPERATIONS[name]
+        operation = JOB_KINDS[name]
         assert operation.name == name
         assert operation.request_model is request_model
         assert operation.has_items is has_items
@@ -142,24 +130,24 @@ def test_a_job_records_the_endpoints_response_as_its_result() -> None:
     study = _study_body()
     context = Context(lambda name, request: study)
     request = SolveRequest.model_validate(STUDY_SOLVE)
-    ran = _run(OPERATIONS["solve"].run(context, request))  # type: ignore[arg-type]
+    ran = _run(JOB_KINDS["solve"].run(context, request))  # type: ignore[arg-type]
     assert ran == study.decode()
-    result = OPERATIONS["solve"].result
+    result = JOB_KINDS["solve"].result
     assert result is not None and result(study) == study.decode()
     SolveResponse.model_validate_json(ran, strict=True)
 
 
 def test_register_adds_an_operation_by_its_name(monkeypatch: pytest.MonkeyPatch) -> None:
-    registry: dict[str, Operation] = dict(OPERATIONS)
-    monkeypatch.setattr(operations, "OPERATIONS", registry)
-    echo = Operation(
+    registry: dict[str, JobKind] = dict(JOB_KINDS)
+    monkeypatch.setattr(operations, "JOB_KINDS", registry)
+    echo = JobKind(
         name="echo",
         summary="an echo",
         request_model=SolveRequest,
         request_description="A POST /solve body.",
         units=lambda request: 1,
         check=lambda request, settings: None,
-        run=OPERATIONS["solve"].run,
+        run=JOB_KINDS["solve"].run,
     )
     operations.register(echo)
     assert registry["echo"] is echo and set(registry) == {*REGISTERED, "echo"}
@@ -171,7 +159,7 @@ def test_register_adds_an_operation_by_its_name(monkeypatch: pytest.MonkeyPatch)
 def _fields(body: Any) -> list[str]:
     """The field paths a POST /jobs body's errors name (as the API's problems name them)."""
     with pytest.raises(ValidationError) as raised:
-        TypeAdapter(submission_type(OPERATIONS)).validate_python(body)
+        TypeAdapter(submission_type(JOB_KINDS)).validate_python(body)
     return [error.field for error in validation_errors(raised.value.errors())]
 
 
@@ -186,9 +174,9 @@ def test_an_operation_that_is_not_registered_is_an_error_on_operation(operation:
 
 def test_an_unknown_operation_is_told_which_are_registered() -> None:
     with pytest.raises(ValidationError) as raised:
-        TypeAdapter(submission_type(OPERATIONS)).validate_python({"operation": "design"})
+        TypeAdapter(submission_type(JOB_KINDS)).validate_python({"operation": "design"})
     (error,) = raised.value.errors()
-    assert all(f"'{name}'" in error["msg"] for name in OPERATIONS), error["msg"]
+    assert all(f"'{name}'" in error["msg"] for name in JOB_KINDS), error["msg"]
 
 
 BAD_REQUESTS = {
@@ -222,11 +210,11 @@ def test_every_registered_operation_is_a_valid_submission() -> None:
         "flutter": GOLAND_FLUTTER,
         "batch": STUDY_BATCH,
     }
-    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(OPERATIONS))
+    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(JOB_KINDS))
     for name, request in bodies.items():
         body = adapter.validate_python({"operation": name, "request": request})
         assert body.operation == name
-        assert isinstance(body.request, OPERATIONS[name].request_model)
+        assert isinstance(body.request, JOB_KINDS[name].request_model)
 
 
 # ------------------------------------------------------------------------------- units
@@ -248,7 +236,7 @@ UNITS = {
 @pytest.mark.parametrize(("name", "request_body", "units"), list(UNITS.values()), ids=list(UNITS))
 def test_a_jobs_progress_counts_its_units(name: str, request_body: Any, units: int) -> None:
     """A sweep counts its airspeeds (a list or {start, stop, count}), a batch its items."""
-    operation = OPERATIONS[name]
+    operation = JOB_KINDS[name]
     request = operation.request_model.model_validate(request_body)
     assert operation.units(request) == units
     operation.check(request, Settings(workers=1))  # and the service's limits let it through
@@ -260,7 +248,7 @@ def test_a_jobs_progress_counts_its_units(name: str, request_body: Any, units: i
 def test_a_batch_over_max_batch_items_is_refused_on_items() -> None:
     request = BatchRequest.model_validate(STUDY_BATCH)
     with pytest.raises(Problem) as refused:
-        OPERATIONS["batch"].check(request, Settings(workers=1, max_batch_items=2))
+        JOB_KINDS["batch"].check(request, Settings(workers=1, max_batch_items=2))
     assert [e["field"] for e in refused.value.extensions["errors"]] == ["items"]
     assert "has 3 items; at most 2" in refused.value.extensions["errors"][0]["reason"]
 
@@ -268,7 +256,7 @@ def test_a_batch_over_max_batch_items_is_refused_on_items() -> None:
 def test_a_batch_item_over_the_station_limit_is_refused_naming_the_item() -> None:
     request = BatchRequest.model_validate(STUDY_BATCH)  # 30-station wings
     with pytest.raises(Problem) as refused:
-        OPERATIONS["batch"].check(request, Settings(workers=1, max_stations=20))
+        JOB_KINDS["batch"].check(request, Settings(workers=1, max_stations=20))
     fields = [e["field"] for e in refused.value.extensions["errors"]]
     assert fields == ["items[0].wing.y", "items[1].wing.y", "items[2].wing.y"]
 
@@ -413,7 +401,7 @@ def test_a_batch_answers_every_item_once_with_at_most_lanes_in_flight(lanes: int
     items = [STUDY_SOLVE] * 7
     request = BatchRequest.model_validate({"items": items})
     context = Context(_no_equilibrium, lanes=lanes)
-    assert _run(OPERATIONS["batch"].run(context, request)) is None  # type: ignore[arg-type]
+    assert _run(JOB_KINDS["batch"].run(context, request)) is None  # type: ignore[arg-type]
     assert sorted(index for index, _, _ in context.recorded) == list(range(len(items)))
     assert all(not ok for _, ok, _ in context.recorded)
     assert context.most_in_flight == lanes
@@ -424,7 +412,7 @@ def test_a_batch_taken_up_from_a_stopped_replica_asks_only_the_items_not_answere
     request = BatchRequest.model_validate({"items": items})
     context = Context(_no_equilibrium, lanes=2)
     context.answered = {0, 3, 4}
-    assert _run(OPERATIONS["batch"].run(context, request)) is None  # type: ignore[arg-type]
+    assert _run(JOB_KINDS["batch"].run(context, request)) is None  # type: ignore[arg-type]
     assert sorted(index for index, _, _ in context.recorded) == [1, 2, 5]
 
 

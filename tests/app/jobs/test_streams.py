@@ -21,7 +21,7 @@ from typing import Any
 import pytest
 
 from app.jobs import streams
-from app.jobs.operations import OPERATIONS
+from app.jobs.operations import JOB_KINDS
 from app.jobs.views import job_view
 
 WAIT = 10.0  # [s] a hang guard only
@@ -78,7 +78,7 @@ class Manager:
     """What the streams read of a `JobManager`."""
 
     def __init__(self, live: LiveStandIn | None = None, changes: list[Any] | None = None) -> None:
-        self.operations = OPERATIONS
+        self.operations = JOB_KINDS
         self.store = ListStore()
         self.stopping = False
         self.poll_interval = 0.5
@@ -139,7 +139,7 @@ def test_a_finished_jobs_events_are_the_retry_time_and_one_end_event() -> None:
     chunks = asyncio.run(_collect(streams.events(Manager(), "job-1", FINISHED)))  # type: ignore[arg-type]
     assert chunks[0] == "retry: 15000\n\n"  # the keep-alive interval, in milliseconds
     assert chunks[1:] == [
-        f"id: 1\nevent: end\ndata: {json.dumps(job_view(FINISHED, OPERATIONS))}\n\n"
+        f"id: 1\nevent: end\ndata: {json.dumps(job_view(FINISHED, JOB_KINDS))}\n\n"
     ]
     (retry, end) = _events("".join(chunks))
     assert retry == {"retry": "15000"}

@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from app.jobs.operations import OPERATIONS
+from app.jobs.operations import JOB_KINDS
 from app.jobs.views import job_links, job_view
 
 # created, started and finished a quarter second, one and two and a half seconds apart; each
@@ -35,7 +35,7 @@ RFC_3339_UTC = re.compile(r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d{1,6})?Z$")
 
 
 def test_a_row_is_shown_with_its_progress_problem_and_links() -> None:
-    view = job_view(ROW, OPERATIONS)
+    view = job_view(ROW, JOB_KINDS)
     assert view == {
         "id": "Ab3_-x",
         "operation": "batch",
@@ -57,7 +57,7 @@ def test_a_row_is_shown_with_its_progress_problem_and_links() -> None:
 
 @pytest.mark.parametrize("field", ["created", "started", "finished", "expires"])
 def test_times_are_rfc_3339_in_utc_and_mean_the_rows_instant(field: str) -> None:
-    shown = job_view(ROW, OPERATIONS)[f"{field}_at"]
+    shown = job_view(ROW, JOB_KINDS)[f"{field}_at"]
     assert RFC_3339_UTC.match(shown), shown
     parsed = datetime.fromisoformat(shown)
     assert parsed.utcoffset() == timedelta(0)
@@ -66,7 +66,7 @@ def test_times_are_rfc_3339_in_utc_and_mean_the_rows_instant(field: str) -> None
 
 def test_the_epoch_and_a_time_not_yet_reached_are_shown_as_such() -> None:
     queued = ROW | {"created": 0.0, "started": None, "finished": None, "expires": None}
-    view = job_view(queued, OPERATIONS)
+    view = job_view(queued, JOB_KINDS)
     assert view["created_at"] == "1970-01-01T00:00:00Z"
     assert (view["started_at"], view["finished_at"], view["expires_at"]) == (None, None, None)
 
@@ -83,7 +83,7 @@ def test_the_epoch_and_a_time_not_yet_reached_are_shown_as_such() -> None:
 def test_a_problem_is_shown_as_json_whether_stored_as_text_or_held_live(
     problem: Any, shown: Any
 ) -> None:
-    assert job_view(ROW | {"problem": problem}, OPERATIONS)["problem"] == shown
+    assert job_view(ROW | {"problem": problem}, JOB_KINDS)["problem"] == shown
 
 
 @pytest.mark.parametrize(
@@ -92,7 +92,7 @@ def test_a_problem_is_shown_as_json_whether_stored_as_text_or_held_live(
     ids=["batch", "solve", "sweep", "optimize", "unregistered"],
 )
 def test_only_an_operation_with_items_links_to_them(operation: str, items: bool) -> None:
-    links = job_view(ROW | {"operation": operation}, OPERATIONS)["links"]
+    links = job_view(ROW | {"operation": operation}, JOB_KINDS)["links"]
     assert links == job_links("Ab3_-x", items)
     assert (links["items"] is not None) is items
     assert links["self"] == "/jobs/Ab3_-x" and links["events"] == "/jobs/Ab3_-x/events"
@@ -102,7 +102,7 @@ def test_times_are_utc_whatever_the_local_zone(monkeypatch: pytest.MonkeyPatch) 
     monkeypatch.setenv("TZ", "America/Los_Angeles")
     time.tzset()
     try:
-        shown = job_view(ROW, OPERATIONS)["created_at"]
+        shown = job_view(ROW, JOB_KINDS)["created_at"]
     finally:
         monkeypatch.undo()
         time.tzset()

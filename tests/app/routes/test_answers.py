@@ -4,13 +4,14 @@ ask for a longer wait (Prefer: wait=N, RFC 7240). No valid request ends in a 504
 
 from __future__ import annotations
 
+import asyncio
 import time
 from typing import Any
 
 import httpx
 import pytest
 
-from app.routes.answers import preferred_wait
+from app.routes.answers import RESPONSE_RESERVE, Arrival, preferred_wait, remaining_wait
 from tests import study
 from tests.app.conftest import Server
 
@@ -30,6 +31,41 @@ from tests.app.conftest import Server
 )
 def test_the_wait_a_client_prefers(prefer: str | None, seconds: float | None) -> None:
     assert preferred_wait(prefer) == seconds
+
+
+@pytest.mark.parametrize(
+    ("wait", "spent", "left"),
+    [
+        (10.0, 0.0, 10.0 - RESPONSE_RESERVE),
+        (10.0, 2.5, 7.5 - RESPONSE_RESERVE),
+        (10.0, 12.0, 0.0),
+        (0.05, 0.0, 0.045),
+        (0.0, 0.0, 0.0),
+    ],
+    ids=["fresh", "body-read-slowly", "past-it", "short-wait", "respond-async"],
+)
+def test_the_wait_counts_from_the_arrival_and_keeps_a_reserve_for_the_202(
+    wait: float, spent: float, left: float
+) -> None:
+    """Issue 40: a 202 arrived after 10.008 s with a 10 s wait (the wait counted from the
+    route, after the body was read and checked): a client with a 10 s timeout saw a timeout.
+    The wait now counts from the arrival and keeps a reserve (a tenth of a short wait) for
+    writing the 202."""
+    assert remaining_wait(wait, 100.0, 100.0 + spent) == pytest.approx(left, abs=1e-12)
+    assert remaining_wait(wait, None, 100.0 + spent) == pytest.approx(
+        remaining_wait(wait, 100.0, 100.0), abs=1e-12
+    )
+
+
+def test_every_request_is_stamped_with_its_arrival_before_anything_else_runs() -> None:
+    seen: dict[str, float] = {}
+
+    async def app(scope: Any, receive: Any, send: Any) -> None:
+        seen["arrived"] = scope["state"]["arrived"]
+
+    before = time.perf_counter()
+    asyncio.run(Arrival(app)({"type": "http"}, None, None))
+    assert before <= seen["arrived"] <= time.perf_counter()
 
 
 @pytest.fixture(scope="module")

@@ -72,6 +72,7 @@ def test_operation_ids_are_clean() -> None:
         "cancel_job",
         "job_events",
         "job_items",
+        "wing_stations",
     }
     solve = schema["paths"]["/solve"]["post"]
     assert "application/problem+json" in solve["responses"]["422"]["content"]

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import time
 from collections.abc import Callable, Iterator
@@ -21,6 +22,7 @@ from typing import Any
 import httpx
 import pytest
 
+from app.routes import jobs as jobs_routes
 from app.settings import Settings
 from tests import study
 from tests.app.conftest import Server, in_process_client
@@ -524,13 +526,13 @@ def test_a_new_operation_is_one_registry_entry() -> None:
     (here one that takes a /solve body), one that is not there is an error on `operation`."""
     from pydantic import TypeAdapter, ValidationError
 
-    from app.jobs.operations import OPERATIONS, Operation, submission_type
+    from app.jobs.operations import JOB_KINDS, JobKind, submission_type
     from app.schemas import SolveRequest
 
     async def run(context: Any, request: SolveRequest) -> str:
         return "{}"
 
-    echo = Operation(
+    echo = JobKind(
         name="echo",
         summary="an echo",
         request_model=SolveRequest,
@@ -539,9 +541,20 @@ def test_a_new_operation_is_one_registry_entry() -> None:
         check=lambda request, settings: None,
         run=run,
     )
-    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(OPERATIONS | {"echo": echo}))
+    adapter: TypeAdapter[Any] = TypeAdapter(submission_type(JOB_KINDS | {"echo": echo}))
     body = adapter.validate_python({"operation": "echo", "request": study.solve_request(10.0)})
     assert body.operation == "echo" and body.request.flight.velocity == 10.0
     with pytest.raises(ValidationError) as raised:
         adapter.validate_python({"operation": "design", "request": {}})
     assert [error["loc"][-1] for error in raised.value.errors()] == ["operation"]
+
+
+@pytest.mark.parametrize("created", [1764864000.0, 1764864000.1234567, 5.0, 1e-3 + 1764864000])
+def test_a_page_cursor_is_the_exact_creation_time_and_id_in_the_documents_pattern(
+    created: float,
+) -> None:
+    """Every string of the document's pattern is a cursor (the fuzzers' GET /jobs was 'mostly
+    rejected' with an opaque base64 one), and the page's end round-trips exactly."""
+    cursor = jobs_routes._cursor({"created": created, "id": "X-ffe858wnd9pEj4wYsmig"})
+    assert re.fullmatch(jobs_routes.CURSOR_PATTERN, cursor)
+    assert jobs_routes._parse_cursor(cursor) == (created, "X-ffe858wnd9pEj4wYsmig")

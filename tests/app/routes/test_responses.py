@@ -1,4 +1,4 @@
-"""app.routes.responses: the error responses /solve, /sweep and /optimize document. Every
+"""app.routes.responses: the error responses every operation's route documents. Every
 problem type a description names (/problems/<slug>) is one the service has
 (`app.problems.PROBLEM_TYPES`, served at that URI) with that response's status, and the
 document serves each as application/problem+json."""
@@ -12,10 +12,11 @@ import httpx
 import pytest
 
 import app.main  # noqa: F401  (every module that adds problem types is imported)
+import solver
 from app.problems import PROBLEM_TYPES, ProblemDetails
-from app.routes.responses import OPTIMIZE_ERRORS, SOLVE_ERRORS, SWEEP_ERRORS
+from app.routes.responses import errors_of
 
-DOCUMENTED = {"/solve": SOLVE_ERRORS, "/sweep": SWEEP_ERRORS, "/optimize": OPTIMIZE_ERRORS}
+DOCUMENTED = {f"/{op.name}": errors_of(op) for op in solver.OPERATION_TABLE}
 NAMED = re.compile(r"/problems/([a-z-]+)")
 
 CASES = [
@@ -39,13 +40,14 @@ def test_every_documented_problem_type_exists_with_that_status(
 
 
 def test_the_endpoints_document_the_failures_they_share() -> None:
-    """A sweep and an optimisation can fail as a solve does (413, 503, 504) and each says
-    what its 422 means."""
-    for errors in (SWEEP_ERRORS, OPTIMIZE_ERRORS):
-        assert set(errors) == set(SOLVE_ERRORS)
-        assert errors[503] is SOLVE_ERRORS[503] and errors[413] is SOLVE_ERRORS[413]
-    assert "infeasible-design" in OPTIMIZE_ERRORS[422]["description"]
-    assert "never with a 422" in SWEEP_ERRORS[422]["description"]
+    """Every operation can fail as a solve does (413, 503, 504), and each says what its 422
+    means: its own refusals, from its row of the table."""
+    solve = DOCUMENTED["/solve"]
+    for path, errors in DOCUMENTED.items():
+        assert set(errors) == {413, 422, 503, 504}, path
+        assert errors[503] == solve[503] and errors[413] == solve[413], path
+    assert "infeasible-design" in DOCUMENTED["/optimize"][422]["description"]
+    assert "answered in its point" in DOCUMENTED["/sweep"][422]["description"]
 
 
 @pytest.mark.parametrize(("path", "status", "response"), CASES, ids=IDS)

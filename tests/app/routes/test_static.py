@@ -55,7 +55,7 @@ def test_no_inline_code_or_style(name: str) -> None:
 
 
 def test_no_eval_in_the_page_scripts() -> None:
-    for path in sorted((STATIC_DIR / "js").glob("*.js")):
+    for path in sorted((STATIC_DIR / "js").rglob("*.js")):
         text = path.read_text()
         assert not re.search(r"\beval\(|new Function\(|setTimeout\(\s*[\"'`]", text), path
 
@@ -78,11 +78,26 @@ def test_pages_and_their_assets_are_served_from_the_app(client: httpx.Client, pa
         assert expected[url[url.rindex(".") :]] in kind, (url, kind)
 
 
+# Every static import: `import ... from "x";` (over several lines too) and `import "x";`.
+IMPORT = re.compile(r"""^import\s+(?:[^"';]*?\s+from\s+)?"([^"]+)";""", re.M | re.S)
+
+
 def test_modules_import_only_files_of_the_app(client: httpx.Client) -> None:
-    for path in sorted((STATIC_DIR / "js").glob("*.js")):
-        for target in re.findall(r"""^import .* from "([^"]+)";$""", path.read_text(), re.M):
-            assert target.startswith("./"), (path.name, target)
-            assert client.get(f"/static/js/{target[2:]}").status_code == 200
+    """Every module in js/ and its folders imports only modules of the app, by a relative path
+    that is served (a module of a folder imports from its parent as "../x.js")."""
+    root = STATIC_DIR / "js"
+    imported = set()
+    for path in sorted(root.rglob("*.js")):
+        for target in IMPORT.findall(path.read_text()):
+            assert target.startswith(("./", "../")), (path.name, target)
+            resolved = (path.parent / target).resolve()
+            assert resolved.is_relative_to(root), (path.name, target)
+            url = resolved.relative_to(STATIC_DIR).as_posix()
+            assert client.get(f"/static/{url}").status_code == 200, (path.name, target)
+            imported.add(resolved)
+    # Every module but the entry points (main.js, and swagger-init.js of /docs) is imported.
+    entries = {root / "main.js", root / "swagger-init.js"}
+    assert set(root.rglob("*.js")) - entries <= imported
 
 
 def test_redoc_is_gone_and_the_page_routes_are_not_in_the_api(in_process: httpx.Client) -> None:

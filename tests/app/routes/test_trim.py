@@ -89,7 +89,6 @@ def test_a_trimmed_sweep_reports_alpha_and_the_trimmed_divergence_limit(client: 
         pytest.param(
             {"velocity": 10.0, "lift": WEIGHT, "weight": WEIGHT}, "flight", id="two-lifts"
         ),
-        pytest.param({"velocity": 10.0, "alpha": 5.0, "load_factor": 2.0}, "flight", id="n-alone"),
         pytest.param({"velocity": 10.0, "lift": 0.0}, "flight.lift", id="zero-lift"),
         pytest.param({"velocity": 10.0, "weight": 0.0}, "flight.weight", id="zero-weight"),
         pytest.param(

@@ -1,0 +1,374 @@
+"""Structural dynamics of the cantilever on the model's own mesh: stiffness, mass, natural modes.
+
+The stiffness is the static model's own (`solver.model.residual`): the root clamps, the trapezoidal
+heave kinematics and the trapezoid rows
+
+    bending   u'_{i+1} - u'_i = h_i (M_i/EI_i + M_{i+1}/EI_{i+1}) / 2
+    torsion   phi_{i+1} - phi_i = h_i (T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2
+
+with M_i, T_i the outboard sums of the loads, are here matrices of numbers, in flexibility
+form: loads -> load rows -> deformation. `tests/solver/test_modes.py` checks them against the
+compiled model's own Jacobian rows and equilibria.
+
+Degrees of freedom: w = (u_1 .. u_{N-1} [m], phi_1 .. phi_{N-1} [rad]), the heave and the twist
+about the elastic axis (EA) at every station but the clamped root. Every deformation the beam
+can take is fixed by them: the slopes follow (z = Z w, z = (u, u', phi [deg]) as the model's
+unknowns).
+
+Loads are taken as the static model takes its aerodynamic loads, per strip at the strip's
+midpoint: a vertical force F_j and a torque tau_j about the EA. Such strip loads f give the
+deformation w = G f; K = G^{-1} is the stiffness. Any other load (a concentrated mass at a
+station, the lattice's panels, a streamwise pitching moment on a swept wing) enters as the strip
+loads that give the same load rows, "equivalent strip loads", so the equations of motion are
+
+    K w + M w'' = f_aero,
+
+M the strips' inertia lumped at their midpoints (mass, static moment and inertia about the EA
+integrated over the strip by the trapezoidal rule, moving as the mean of its two stations) and
+the concentrated masses', as equivalent strip loads. K and M are not symmetric (the trapezoid
+and the lumping are not variational), but K M^{-1} has real positive eigenvalues, the squares of
+the natural frequencies, which converge to the continuous beam's at O(h^2) (tested against the
+uniform cantilever's closed forms, 1.8751^2 sqrt(EI / (m L^4)) and (pi / 2) sqrt(GJ / (I L^2)),
+and the exact coupled bending-torsion frequencies).
+
+The same K is what makes a flutter solution's zero-frequency root the static divergence: at
+zero frequency the equations are the static model's, K w = q Q w (`solver.flutter`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import scipy.linalg
+
+from solver.errors import ConvergenceError, InvalidInput
+from solver.inputs.mass import MassModel, section_inertia
+from solver.inputs.wing import Wing
+from solver.model.geometry import DEG
+from solver.results.flutter import ModeShape, NaturalModes
+
+__all__ = [
+    "Structure",
+    "largest_edge_displacement",
+    "mode_shape",
+    "natural_modes",
+    "structure",
+]
+
+DEG_PER_RAD = 180.0 / math.pi
+# An eigenvalue omega^2 counts as real when its imaginary part is this small relative to it:
+# the non-symmetric discretisation moves real eigenvalues off the real axis by round-off only.
+_REAL_TOLERANCE = 1e-6
+
+
+def _outboard(strip_values: np.ndarray) -> np.ndarray:
+    """(N-1, c) per strip -> (N, c): row i sums strips j >= i (zero at the tip)."""
+    sums = np.cumsum(strip_values[::-1], axis=0)[::-1]
+    return np.vstack([sums, np.zeros((1, strip_values.shape[1]))])
+
+
+@dataclass(frozen=True, eq=False)
+class Structure:
+    """The cantilever of one wing with its mass, as matrices on the degrees of freedom w.
+
+    wing: the wing; arc: (N,) [m] stations' distance from the root along the EA;
+    stiffness: K (n, n), n = 2 (N - 1); mass: M (n, n) (module docstring);
+    kinetic_mass: (n, n) symmetric, w' . kinetic_mass w' / 2 is the kinetic energy [J];
+    states: Z (3N, n), the model's structural unknowns z = (u [m], u' [-], phi [deg]) of w;
+    rows_to_strip_loads: (n, n), the equivalent strip loads of load rows (as the residual's
+    bending and torsion rows: dimensionless and in degrees), `strip_loads_of`;
+    couple_to_strip_loads: (n, N - 1), the equivalent strip loads of a bending couple [N m]
+    about the axis normal to the EA on each strip (a streamwise moment on a swept wing has one).
+    """
+
+    wing: Wing
+    arc: np.ndarray
+    stiffness: np.ndarray
+    mass: np.ndarray
+    kinetic_mass: np.ndarray
+    states: np.ndarray
+    rows_to_strip_loads: np.ndarray
+    couple_to_strip_loads: np.ndarray
+
+    @property
+    def n_strips(self) -> int:
+        return self.wing.n_stations - 1
+
+    @property
+    def n_dof(self) -> int:
+        return 2 * self.n_strips
+
+    def strip_loads_of(self, load_rows: np.ndarray) -> np.ndarray:
+        """(n, c) equivalent strip loads (F_j [N], tau_j [N m]) of load rows (2(N-1), c) in the
+        residual's units: the strip loads whose bending and torsion rows these are."""
+        return self.rows_to_strip_loads @ load_rows
+
+    @cached_property
+    def section_motion(self) -> tuple[np.ndarray, np.ndarray]:
+        """(N, n) each: the stations' heave [m] and streamwise pitch [rad] of w (the flow's
+        twist phi cos(sweep) - u' sin(sweep), as the static model turns its sections)."""
+        n = self.wing.n_stations
+        z = self.states
+        sweep = self.wing.sweep * DEG
+        heave = z[:n]
+        pitch = math.cos(sweep) * DEG * z[2 * n :] - math.sin(sweep) * z[n : 2 * n]
+        return heave, pitch
+
+    def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
+        """(n, P) the equivalent strip loads of the forces (P, 3) [N] at the points (P, 3) [m],
+        each on the strip `strips` (P,) holds, taken as the static model takes its panels'
+        (`solver.model.residual`): the vertical force bends the beam about the elastic axis from
+        where it acts (a force at the strip's midpoint and a bending couple), the moment about
+        the undeformed elastic axis twists it."""
+        m, count = self.n_strips, points.shape[0]
+        sweep = self.wing.sweep * DEG
+        axis = np.array([math.sin(sweep), math.cos(sweep), 0.0])  # e_s
+        midpoint = (self.arc[1:] + self.arc[:-1]) / 2
+        columns = np.arange(count)
+        loads = np.zeros((2 * m, count))
+        loads[strips, columns] = forces[:, 2]
+        loads[m + strips, columns] = np.cross(points, forces) @ axis
+        couple = forces[:, 2] * (points @ axis - midpoint[strips])
+        return loads + self.couple_to_strip_loads[:, strips] * couple
+
+    @cached_property
+    def modes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(omega^2 (n,) ascending [rad^2/s^2], right eigenvectors (n, n), left eigenvectors
+        (n, n)) of K v = omega^2 M v, the left ones scaled so that left.T M right = I."""
+        values, left, right = scipy.linalg.eig(self.stiffness, self.mass, left=True, right=True)
+        if not np.all(np.abs(values.imag) <= _REAL_TOLERANCE * np.abs(values)) or not np.all(
+            values.real > 0
+        ):
+            raise ConvergenceError(
+                0.0, 0, math.nan, "the structure's eigenvalues are not real and positive"
+            )
+        order = np.argsort(values.real)
+        omega2 = values.real[order]
+        right, left = right[:, order].real, left[:, order].real
+        scale = np.einsum("ij,ik,kj->j", left, self.mass, right)
+        return omega2, right, left / scale
+
+
+def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
+    """The cantilever of `wing` with `mass` (`Structure`).
+
+    Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
+    have no mass or no inertia."""
+    mass = mass if mass is not None else wing.mass
+    if mass is None:
+        raise InvalidInput(
+            "wing.mass",
+            "vibration and flutter need the wing's mass: mass per unit length, centre of "
+            "gravity and inertia per station",
+        )
+    if mass.mass_per_length.shape[0] != wing.n_stations:
+        raise InvalidInput(
+            "wing.mass", f"has {mass.mass_per_length.shape[0]} stations but y has {wing.n_stations}"
+        )
+    sweep = wing.sweep * DEG
+    arc = wing.y / math.cos(sweep)
+    beam = _Beam(arc, wing.bending_stiffness, wing.torsional_stiffness)
+    inertia = section_inertia(mass, wing.chord, wing.elastic_axis, wing.sweep, wing.spar)
+    strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia)
+    m = wing.n_stations - 1
+    strip_rows = beam.strip_load_rows()
+    flexibility = beam.flexibility()  # w per unit load row
+    stiffness = np.linalg.inv(flexibility @ strip_rows)
+    rows_to_strip_loads = np.linalg.inv(strip_rows)
+    # Strips move as the mean of their two stations (the root's stays put).
+    mean = np.zeros((m, m))
+    mean[np.arange(m), np.arange(m)] = 0.5
+    mean[np.arange(1, m), np.arange(m - 1)] = 0.5
+    strip_motion = np.kron(np.eye(2), mean)
+    mass_matrix = strips @ strip_motion
+    kinetic = strip_motion.T @ strips @ strip_motion
+    for item in mass.concentrated:
+        if item.station == 0:
+            continue  # the root is clamped: the mass never moves
+        block = np.array(
+            [
+                [item.mass, -item.mass * item.offset],
+                [-item.mass * item.offset, item.inertia + item.mass * item.offset**2],
+            ]
+        )
+        motion = np.zeros((2, 2 * m))
+        motion[0, item.station - 1] = 1.0
+        motion[1, m + item.station - 1] = 1.0
+        mass_matrix = mass_matrix + rows_to_strip_loads @ beam.station_load_rows(item.station) @ (
+            block @ motion
+        )
+        kinetic = kinetic + motion.T @ block @ motion
+    return Structure(
+        wing=wing,
+        arc=arc,
+        stiffness=stiffness,
+        mass=mass_matrix,
+        kinetic_mass=kinetic,
+        states=beam.states(flexibility),
+        rows_to_strip_loads=rows_to_strip_loads,
+        couple_to_strip_loads=rows_to_strip_loads @ beam.couple_load_rows(),
+    )
+
+
+def _strip_inertia(
+    arc: np.ndarray, mass: np.ndarray, static_moment: np.ndarray, inertia: np.ndarray
+) -> np.ndarray:
+    """(n, n) strip inertia: (F, tau) = -this (u'', phi'') of the strips' midpoints; mass,
+    static moment and inertia integrated over each strip (trapezoidal rule)."""
+    h = np.diff(arc)
+
+    def integral(per_length: np.ndarray) -> np.ndarray:
+        return np.diag(h * (per_length[1:] + per_length[:-1]) / 2)
+
+    moment = integral(static_moment)
+    # Heave up with a centre of gravity d aft: the section's points move u - x phi, so the
+    # kinetic energy is (m u'^2 - 2 S u' phi' + I phi'^2) / 2.
+    return np.block([[integral(mass), -moment], [-moment, integral(inertia)]])
+
+
+class _Beam:
+    """The static model's beam rows as matrices (`solver.model.residual._Beam` and
+    `_structure_rows`): internal loads, load rows, deformation."""
+
+    def __init__(self, arc: np.ndarray, bending: np.ndarray, torsion: np.ndarray) -> None:
+        self.arc, self.h = arc, np.diff(arc)
+        self.bending, self.torsion = bending, torsion
+        self.n = arc.shape[0]
+
+    def load_rows(self, moment: np.ndarray, torque: np.ndarray) -> np.ndarray:
+        """(2(N-1), c) the bending and torsion rows' load terms of station moments and torques
+        (N, c): -h_i/2 (M_i/EI_i + M_{i+1}/EI_{i+1}) and the same of T/GJ in degrees."""
+
+        def trapezoid(values: np.ndarray, stiffness: np.ndarray, scale: float) -> np.ndarray:
+            per = values / stiffness[:, None]
+            return -scale * self.h[:, None] / 2 * (per[:-1] + per[1:])
+
+        return np.vstack(
+            [trapezoid(moment, self.bending, 1.0), trapezoid(torque, self.torsion, DEG_PER_RAD)]
+        )
+
+    def strip_load_rows(self) -> np.ndarray:
+        """(2(N-1), 2(N-1)) load rows of unit strip loads: a vertical force at each strip's
+        midpoint on the EA (the first N - 1 columns), a torque about the EA on each strip."""
+        m = self.n - 1
+        midpoint = (self.arc[1:] + self.arc[:-1]) / 2
+        forces = np.eye(m)
+        moment = _outboard(forces * midpoint[:, None]) - self.arc[:, None] * _outboard(forces)
+        torque = _outboard(np.eye(m))
+        zeros = np.zeros((self.n, m))
+        return np.hstack([self.load_rows(moment, zeros), self.load_rows(zeros, torque)])
+
+    def couple_load_rows(self) -> np.ndarray:
+        """(2(N-1), N-1) load rows of a unit bending couple on each strip."""
+        m = self.n - 1
+        return self.load_rows(_outboard(np.eye(m)), np.zeros((self.n, m)))
+
+    def station_load_rows(self, station: int) -> np.ndarray:
+        """(2(N-1), 2) load rows of a unit vertical force and a unit torque at `station`.
+
+        The force's moment is continuous there. The torque is not: it acts on the segments
+        inboard of the station only (the trapezoid of each segment takes the torque on its own
+        side of the station), which keeps the rows exact for a uniform torsional stiffness."""
+        moment = np.maximum(self.arc[station] - self.arc, 0.0)[:, None]
+        force_rows = self.load_rows(moment, np.zeros((self.n, 1)))
+        inboard = np.arange(self.n - 1) < station
+        per = 1.0 / self.torsion
+        torque_rows = np.zeros((self.n - 1, 1))
+        torque_rows[inboard, 0] = -DEG_PER_RAD * self.h[inboard] / 2 * (per[:-1] + per[1:])[inboard]
+        return np.hstack([force_rows, np.vstack([np.zeros((self.n - 1, 1)), torque_rows])])
+
+    def structure_rows(self) -> np.ndarray:
+        """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg])."""
+        n, m, h = self.n, self.n - 1, self.h
+        a = np.zeros((3 * n, 3 * n))
+        a[0, 0] = a[1, n] = a[2, 2 * n] = 1.0  # clamps
+        i = np.arange(m)
+        rows = 3 + i
+        a[rows, i + 1], a[rows, i] = 1.0, -1.0
+        a[rows, n + i], a[rows, n + i + 1] = -h / 2, -h / 2
+        for block in (1, 2):  # slope and twist differences
+            rows = 3 + block * m + i
+            a[rows, block * n + i + 1], a[rows, block * n + i] = 1.0, -1.0
+        return a
+
+    def response(self) -> np.ndarray:
+        """(3N, 2(N-1)) P = A^{-1} E: z = -P l for load rows l (`solver.numerics.stability`'s)."""
+        m = self.n - 1
+        selector = np.zeros((3 * self.n, 2 * m))
+        selector[3 + m + np.arange(2 * m), np.arange(2 * m)] = 1.0
+        return np.linalg.solve(self.structure_rows(), selector)
+
+    def flexibility(self) -> np.ndarray:
+        """(2(N-1), 2(N-1)): w of unit load rows, -S P (S picks u and phi [rad] off the root)."""
+        m = self.n - 1
+        response = self.response()
+        pick = np.r_[1 : self.n, 2 * self.n + 1 : 3 * self.n]
+        flexibility = -response[pick]
+        flexibility[m:] *= DEG
+        return flexibility
+
+    def states(self, flexibility: np.ndarray) -> np.ndarray:
+        """(3N, 2(N-1)) Z: the unknowns z of w, -P F^{-1}."""
+        return -self.response() @ np.linalg.inv(flexibility)
+
+
+def natural_modes(
+    wing: Wing, mass: MassModel | None = None, count: int | None = None
+) -> NaturalModes:
+    """The lowest `count` natural modes of `wing` with `mass` in vacuum (default: all of them,
+    2 (N - 1)), clamped at the root.
+
+    Each shape is scaled so that the largest vertical displacement of a leading or a trailing
+    edge is 1 m, and that displacement is upward. Raises `InvalidInput` without a mass model."""
+    beam = structure(wing, mass)
+    if count is None:
+        count = beam.n_dof
+    if not (isinstance(count, int) and 1 <= count <= beam.n_dof):
+        raise InvalidInput("modes", f"must be a whole number from 1 to {beam.n_dof}")
+    omega2, right, _ = beam.modes
+    shapes = [mode_shape(beam, right[:, i], math.sqrt(omega2[i])) for i in range(count)]
+    return NaturalModes(y=wing.y, modes=shapes)
+
+
+def largest_edge_displacement(beam: Structure, vector: np.ndarray) -> float:
+    """[m] the vertical displacement of a leading or trailing edge of the degrees of freedom
+    `vector` (n,) largest in magnitude (signed)."""
+    edges = _edges(beam, vector)
+    return float(edges[np.argmax(np.abs(edges))])
+
+
+def _edges(beam: Structure, vector: np.ndarray) -> np.ndarray:
+    """(2N,) [m] the leading edges' and trailing edges' vertical displacements of `vector`."""
+    wing = beam.wing
+    z = beam.states @ vector
+    n = wing.n_stations
+    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
+    sweep = wing.sweep * DEG
+    twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
+    ahead = wing.elastic_axis * wing.chord
+    return np.concatenate([heave + ahead * twist * DEG, heave - (wing.chord - ahead) * twist * DEG])
+
+
+def mode_shape(beam: Structure, vector: np.ndarray, frequency: float) -> ModeShape:
+    """The shape of the degrees of freedom `vector` (n,), at `frequency` [rad/s]: scaled as in
+    `natural_modes`, with its bending share."""
+    wing = beam.wing
+    z = beam.states @ vector
+    n = wing.n_stations
+    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
+    sweep = wing.sweep * DEG
+    twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
+    scale = 1.0 / largest_edge_displacement(beam, vector)
+    m, kinetic = beam.n_strips, beam.kinetic_mass
+    heave_energy = vector[:m] @ kinetic[:m, :m] @ vector[:m]  # m u'^2 (times omega^2 / 2)
+    twist_energy = vector[m:] @ kinetic[m:, m:] @ vector[m:]  # I_ea phi'^2
+    return ModeShape(
+        frequency=frequency,
+        heave=heave * scale,
+        twist=twist * scale,
+        axis_twist=axis_twist * scale,
+        bending_share=float(heave_energy / (heave_energy + twist_energy)),
+    )

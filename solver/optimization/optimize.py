@@ -1,0 +1,419 @@
+"""Design: the jig twist (and the spar's wall) of the wing that flies, by IPOPT on exact gradients
+(the reduced functions and their gradients: `solver.optimization.design_space`).
+
+The study's closing sketch: make the jig twist a design variable, require the lift, minimise the
+drag of the deformed wing. Solved here in the reduced (nested) space: the design vector v holds
+the jig-twist variables d (k control points, or every station) and, when the spar is sized, the
+wall thickness t (N); each design's equilibrium x(v) comes from Newton (warm-started from the
+previous design's, in IPOPT's deterministic order), and every function's gradient from one
+forward sensitivity at the equilibrium,
+
+    dx/dv = -J^{-1} dr/dv,    dF/dv = F_x dx/dv + F_v,
+
+with J the coupled Jacobian the solver already has. Design derivatives come for free from the
+model's structure: the jig twist enters the lattice only through the streamwise twist
+phi cos(sweep) - u' sin(sweep) + jig, so dr/d(jig) is the aerodynamic part of dr/dphi over
+cos(sweep); EI and GJ enter only the beam's trapezoid rows, differentiated by hand. IPOPT runs
+with a limited-memory Hessian.
+
+Why nested: the simultaneous form (the equilibrium equations as IPOPT constraints, as the study
+and the AeroSandbox reference solve it) needs the Hessian of the lattice's residual; CasADi takes
+100-160 s to build it for N = 30 (measured), where one reduced gradient costs one evaluation.
+
+Well-posed by construction: the vortex lattice's near-field drag over free station twists runs
+away (a zigzag between stations costs nothing). Control points (a cubic spline with zero slope
+at the root) are the default; with every station free, the total twist's slope at the root is
+held at zero (tw[0] = tw[1], as the reference) and a smoothness penalty
+w sum (tw[i+1] - 2 tw[i] + tw[i-1])^2 [N, w in N/deg^2] is offered. The far-field (Trefftz
+plane) drag of the planar wake, which such zigzags cannot lower, is reported and offered as the
+objective.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from solver.errors import InfeasibleDesign, InvalidInput, SolverError, numerical_failures_as
+from solver.inputs.design import DesignProblem
+from solver.inputs.flight import FlightCondition
+from solver.inputs.options import SolverOptions
+from solver.inputs.wing import Wing
+from solver.optimization.design_space import DesignPoint, DesignSpace
+from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
+from solver.results.equilibrium import Equilibrium
+from solver.statics.solve import solve
+from solver.statics.trefftz import trefftz_drag
+
+__all__ = ["optimize"]
+
+_ACTIVE = 1e-6  # relative distance to a limit at which a constraint counts as active
+
+
+class _Functions(ca.Callback):
+    """v -> (objective, constraints) for IPOPT, from a `DesignSpace`."""
+
+    def __init__(self, space: DesignSpace, constraints: _Constraints) -> None:
+        ca.Callback.__init__(self)
+        self.space, self.constraints = space, constraints
+        self.jacobian_callback: _Jacobian | None = None
+        self.construct("flexwing_design", {})
+
+    def get_n_in(self) -> int:
+        return 1
+
+    def get_n_out(self) -> int:
+        return 2
+
+    def get_sparsity_in(self, i: int) -> ca.Sparsity:
+        return ca.Sparsity.dense(self.space.n_design, 1)
+
+    def get_sparsity_out(self, i: int) -> ca.Sparsity:
+        return ca.Sparsity.dense(1, 1) if i == 0 else ca.Sparsity.dense(self.constraints.size, 1)
+
+    def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
+        point = self.constraints.point(np.array(arg[0]).ravel())
+        if point is None:
+            return [ca.DM(math.nan), ca.DM.nan(self.constraints.size, 1)]
+        return [ca.DM(self.constraints.objective(point)), ca.DM(self.constraints.values(point))]
+
+    def has_jacobian(self) -> bool:
+        return True
+
+    def get_jacobian(self, name: str, inames: Any, onames: Any, opts: Any) -> ca.Function:
+        self.jacobian_callback = _Jacobian(name, self.space, self.constraints, opts)
+        return self.jacobian_callback
+
+
+class _Jacobian(ca.Callback):
+    def __init__(self, name: str, space: DesignSpace, constraints: _Constraints, opts: Any) -> None:
+        ca.Callback.__init__(self)
+        self.space, self.constraints = space, constraints
+        self.construct(name, opts)
+
+    def get_n_in(self) -> int:
+        return 3
+
+    def get_n_out(self) -> int:
+        return 2
+
+    def get_sparsity_in(self, i: int) -> ca.Sparsity:
+        sizes = (self.space.n_design, 1, self.constraints.size)
+        return ca.Sparsity.dense(sizes[i], 1)
+
+    def get_sparsity_out(self, i: int) -> ca.Sparsity:
+        rows = 1 if i == 0 else self.constraints.size
+        return ca.Sparsity.dense(rows, self.space.n_design)
+
+    def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
+        point = self.constraints.point(np.array(arg[0]).ravel())
+        nv = self.space.n_design
+        if point is None:
+            return [ca.DM.nan(1, nv), ca.DM.nan(self.constraints.size, nv)]
+        return [
+            ca.DM(self.constraints.objective_gradient(point)[None, :]),
+            ca.DM(self.constraints.jacobian(point)),
+        ]
+
+
+class _Constraints:
+    """Which functions are IPOPT's objective and constraints, scaled, with their bounds."""
+
+    def __init__(self, space: DesignSpace, problem: DesignProblem) -> None:
+        self.space, self.problem = space, problem
+        n = space.wing.n_stations
+        weight = problem.lift
+        # name -> (scale, lower, upper) in the function's own units
+        self.entries: list[tuple[str, float, np.ndarray, np.ndarray]] = [
+            ("lift", weight, np.array([weight]), np.array([weight]))
+        ]
+        if problem.control_points is None:
+            self.entries.append(("root_twist_slope", 1.0, np.zeros(1), np.zeros(1)))
+        lower, upper = problem.twist_bounds
+        self.entries.append(("jig_twist", 1.0, np.full(n, lower), np.full(n, upper)))
+        if problem.max_tip_heave is not None and not space.rigid:
+            limit = problem.max_tip_heave
+            self.entries.append(("tip_heave", limit, np.array([-limit]), np.array([limit])))
+        if space.spar is not None:
+            self.entries.append(("von_mises", 1.0, np.full(n - 1, -np.inf), np.zeros(n - 1)))
+        self.size = sum(lo.size for _, _, lo, _ in self.entries)
+        self.failure: SolverError | None = None
+        # IPOPT's variables: twist in degrees, walls in millimetres (both of order one).
+        self.variable_scale = np.ones(space.n_design)
+        self.variable_scale[space.n_twist :] = 1e-3
+
+    def point(self, scaled: np.ndarray) -> DesignPoint | None:
+        try:
+            with numerical_failures_as(self.problem.velocity):
+                return self.space.at(scaled * self.variable_scale)
+        except SolverError as error:  # IPOPT shortens its step on NaN
+            self.failure = error
+            return None
+
+    def objective(self, point: DesignPoint) -> float:
+        name = self.problem.objective
+        return float(point.values[name][0] + point.values["penalty"][0])
+
+    def objective_gradient(self, point: DesignPoint) -> np.ndarray:
+        name = self.problem.objective
+        return (point.gradients[name][0] + point.gradients["penalty"][0]) * self.variable_scale
+
+    def values(self, point: DesignPoint) -> np.ndarray:
+        return np.concatenate([point.values[name] / scale for name, scale, _, _ in self.entries])
+
+    def jacobian(self, point: DesignPoint) -> np.ndarray:
+        rows = [point.gradients[name] / scale for name, scale, _, _ in self.entries]
+        return np.vstack(rows) * self.variable_scale
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return (
+            np.concatenate([lo / scale for _, scale, lo, _ in self.entries]),
+            np.concatenate([hi / scale for _, scale, _, hi in self.entries]),
+        )
+
+
+def _run_ipopt(
+    space: DesignSpace, problem: DesignProblem, start: np.ndarray, tolerance: float
+) -> tuple[np.ndarray, OptimizerInfo, _Constraints]:
+    started = time.perf_counter()
+    constraints = _Constraints(space, problem)
+    functions = _Functions(space, constraints)
+    v = ca.MX.sym("v", space.n_design)
+    objective, g = functions(v)
+    nlp = {"x": v, "f": objective, "g": g}
+    options: dict[str, Any] = {
+        "ipopt.hessian_approximation": "limited-memory",
+        # Twist alone is nearly quadratic: a history as long as the design vector (up to 20)
+        # takes 46 iterations on 30 stations where IPOPT's 6 takes 66. With the spar's walls
+        # the long history overshoots into designs without equilibrium: IPOPT's 6 there.
+        "ipopt.limited_memory_max_history": 6 if space.n_wall else min(20, space.n_design),
+        "ipopt.tol": tolerance,
+        "ipopt.constr_viol_tol": tolerance,
+        "ipopt.max_iter": 500,
+        # Stop three iterations after the error is below 1e-8 (default: fifteen below 1e-6):
+        # the optimum then holds to ~1e-9 in drag and ~1e-7 deg in twist.
+        "ipopt.acceptable_tol": 1e-8,
+        "ipopt.acceptable_iter": 3,
+        "ipopt.print_level": 0,
+        "ipopt.sb": "yes",
+        "print_time": False,
+        "show_eval_warnings": False,  # a design without equilibrium: a NaN IPOPT steps back from
+    }
+    ipopt = ca.nlpsol("flexwing_design", "ipopt", nlp, options)  # type: ignore[arg-type]
+    lower_v = np.full(space.n_design, -np.inf)
+    upper_v = np.full(space.n_design, np.inf)
+    if space.n_wall:
+        tube = space.spar
+        assert tube is not None
+        low, high = problem.wall_thickness_bounds
+        radius = tube.outer_diameter / 2
+        if np.any(radius < low):
+            thin = int(np.argmin(radius))
+            raise InfeasibleDesign(
+                "wall_thickness",
+                f"the thinnest wall allowed, {low:g} m, is thicker than the tube's radius at "
+                f"station {thin} ({radius[thin]:.3g} m): no tube has such a wall",
+            )
+        lower_v[space.n_twist :] = low
+        upper_v[space.n_twist :] = np.minimum(high, radius)
+    lbg, ubg = constraints.bounds()
+    scale = constraints.variable_scale
+    result = ipopt(x0=start / scale, lbx=lower_v / scale, ubx=upper_v / scale, lbg=lbg, ubg=ubg)
+    stats = ipopt.stats()
+    info = OptimizerInfo(
+        iterations=int(stats.get("iter_count", 0)),
+        evaluations=space.evaluations,
+        status=str(stats.get("return_status", "unknown")),
+        seconds=time.perf_counter() - started,
+    )
+    return np.array(result["x"]).ravel() * scale, info, constraints
+
+
+def optimize(
+    wing: Wing, problem: DesignProblem, options: SolverOptions | None = None
+) -> OptimalDesign:
+    """The jig twist (and spar wall) that minimises `problem.objective` while the flexible wing
+    carries `problem.lift`, with the equilibrium of the optimal wing as `solve` answers it and
+    the rigid wing's optimum beside it. Raises `InfeasibleDesign` naming the constraint that
+    could not be met, `InvalidInput` for a problem the wing cannot pose (sizing without a spar).
+    """
+    options = options or SolverOptions()
+    if problem.size_spar and wing.spar is None:
+        raise InvalidInput("design.wall_thickness", "the wing has no spar to size")
+    tolerance = 1e-10
+    rigid, rigid_twist = None, None
+    if problem.objective != "spar_mass":
+        rigid, rigid_twist = _rigid_optimum(wing, problem, options, tolerance)
+    space = DesignSpace(wing, problem, options, rigid=False)
+    start = np.zeros(space.n_design)
+    if rigid_twist is not None:
+        start[: space.n_twist] = rigid_twist  # the flying shape the flexible wing aims at
+    if space.n_wall:
+        assert wing.spar is not None
+        start[space.n_twist :] = wing.spar.wall_thickness
+    v, info, constraints = _run_ipopt(space, problem, start, tolerance)
+    if not info.status.startswith("Solve_Succeeded") and "Acceptable" not in info.status:
+        raise _infeasible(space, constraints, v, info)
+    optimal_wing = space.design_wing(v)
+    flight = FlightCondition(problem.velocity, problem.alpha, problem.density)
+    equilibrium = solve(optimal_wing, flight, options=options)
+    point = space.at(v)
+    values = _constraint_values(space, constraints, point, equilibrium)
+    for value in values:
+        if (
+            value.name == "stability_margin"
+            and value.upper is not None
+            and value.value > value.upper
+        ):
+            raise InfeasibleDesign(
+                "stability_margin",
+                f"the optimum's q / local divergence pressure is {value.value:.4g}, above the "
+                f"allowed {value.upper:.4g}",
+            )
+    jig, wall = space.split(v)
+    lift = equilibrium.totals.lift
+    near, far = equilibrium.totals.induced_drag, trefftz_drag(equilibrium)
+    objective = {
+        "induced_drag": near,
+        "trefftz_drag": far,
+        "spar_mass": equilibrium.totals.spar_mass or 0.0,
+    }[problem.objective] + float(point.values["penalty"][0])
+    return OptimalDesign(
+        wing=optimal_wing,
+        jig_twist=jig,
+        control_points=None if problem.control_points is None else v[: space.n_twist].copy(),
+        wall_thickness=None if wall is None else wall.copy(),
+        objective=problem.objective,
+        objective_value=objective,
+        induced_drag=near,
+        trefftz_drag=far,
+        span_efficiency=_efficiency(lift, problem, wing, near),
+        trefftz_span_efficiency=_efficiency(lift, problem, wing, far),
+        spar_mass=equilibrium.totals.spar_mass,
+        constraints=values,
+        equilibrium=equilibrium,
+        rigid=rigid,
+        optimizer=info,
+    )
+
+
+def _efficiency(lift: float, problem: DesignProblem, wing: Wing, drag: float) -> float:
+    """e = L^2 / (q pi b^2 D)."""
+    span = 2 * wing.semispan
+    return lift**2 / (problem.dynamic_pressure * math.pi * span**2 * drag)
+
+
+def _rigid_optimum(
+    wing: Wing, problem: DesignProblem, options: SolverOptions, tolerance: float
+) -> tuple[RigidOptimum, np.ndarray]:
+    """The rigid wing's optimum, and its twist variables (where the flexible search starts)."""
+    rigid_problem = problem.for_the_rigid_wing()
+    space = DesignSpace(wing, rigid_problem, options, rigid=True)
+    v, info, constraints = _run_ipopt(space, rigid_problem, np.zeros(space.n_design), tolerance)
+    if not info.status.startswith("Solve_Succeeded") and "Acceptable" not in info.status:
+        raise _infeasible(space, constraints, v, info)
+    point = space.at(v)
+    lift = float(point.values["lift"][0])
+    near = float(point.values["induced_drag"][0])
+    far = float(point.values["trefftz_drag"][0])
+    optimum = RigidOptimum(
+        jig_twist=space.split(v)[0],
+        induced_drag=near,
+        trefftz_drag=far,
+        span_efficiency=_efficiency(lift, problem, wing, near),
+        trefftz_span_efficiency=_efficiency(lift, problem, wing, far),
+        optimizer=info,
+    )
+    return optimum, v[: space.n_twist]
+
+
+def _infeasible(
+    space: DesignSpace, constraints: _Constraints, v: np.ndarray, info: OptimizerInfo
+) -> InfeasibleDesign:
+    """Name the constraint the optimiser could not meet (the most violated at its last point).
+
+    v: (n_design,) the last design in physical units (twist [deg], walls [m])."""
+    point = constraints.point(v / constraints.variable_scale)
+    if point is None:
+        return InfeasibleDesign(
+            "lift", f"no equilibrium near the last design: {constraints.failure}"
+        )
+    worst, excess = "optimizer", 0.0
+    for name, scale, lower, upper in constraints.entries:
+        value = point.values[name] / scale
+        violation = float(np.max(np.maximum(lower / scale - value, value - upper / scale)))
+        if violation > excess:
+            worst, excess = name, violation
+    return InfeasibleDesign(
+        worst,
+        f"IPOPT stopped with {info.status} after {info.iterations} iterations"
+        + (f"; violated by {excess:.3g} of its scale" if worst != "optimizer" else ""),
+        violation=excess if worst != "optimizer" else None,
+    )
+
+
+def _station_of(name: str, index: int, y: np.ndarray) -> float | None:
+    """[m] where a constraint binds: its station, the tip for the tip heave, None for totals."""
+    if name == "tip_heave":
+        return float(y[-1])
+    if name in ("jig_twist", "von_mises"):
+        return float(y[index])
+    return None
+
+
+def _constraint_values(
+    space: DesignSpace, constraints: _Constraints, point: DesignPoint, equilibrium: Equilibrium
+) -> list[ConstraintValue]:
+    units = {
+        "lift": "N",
+        "root_twist_slope": "deg",
+        "jig_twist": "deg",
+        "tip_heave": "m",
+        "von_mises": "Pa",
+    }
+    out = []
+    y = space.wing.y
+    for name, scale, lower, upper in constraints.entries:
+        values = point.values[name]
+        # The station closest to a limit.
+        gaps = np.minimum(values - lower, upper - values)
+        worst = int(np.argmin(gaps))
+        active = bool(gaps[worst] <= _ACTIVE * scale) if np.isfinite(gaps[worst]) else False
+        value, low, high = float(values[worst]), lower[worst], upper[worst]
+        if name == "von_mises":
+            tube = equilibrium.wing.spar
+            assert tube is not None
+            allowable = tube.material.yield_stress / space.options.safety_factor
+            stresses = equilibrium.stations.von_mises_stress
+            assert stresses is not None
+            worst = int(np.argmax(stresses))
+            value, low, high = float(stresses[worst]), -np.inf, allowable
+            active = bool(high - value <= _ACTIVE * allowable)
+        out.append(
+            ConstraintValue(
+                name=name,  # type: ignore[arg-type]
+                value=value,
+                lower=None if not np.isfinite(low) else float(low),
+                upper=None if not np.isfinite(high) else float(high),
+                unit=units[name],
+                active=active,
+                y=_station_of(name, worst, y),
+            )
+        )
+    margin = equilibrium.stability.margin
+    limit = space.problem.max_stability_margin
+    out.append(
+        ConstraintValue(
+            name="stability_margin",
+            value=margin,
+            lower=None,
+            upper=limit,
+            unit="-",
+            active=bool(limit - margin <= _ACTIVE),
+        )
+    )
+    return out

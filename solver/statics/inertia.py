@@ -1,0 +1,125 @@
+"""Inertia relief: the wing's own mass under the aircraft's load factor.
+
+In steady flight at load factor n the aircraft accelerates at (n - 1) g upward while gravity
+pulls g down: in its frame every mass of the wing weighs n g, downward. The wing's distributed
+mass (`wing.mass`: the non-structural mass, plus a tube spar's own, density times its wall's
+area), and its concentrated masses (stores, engines, balance weights), so load the beam
+against the lift: the section loads are the aerodynamic loads minus the inertial ones. The
+weight the lift carries is the aircraft's, the wing's own mass part of it (`FlightCondition`).
+
+Sign convention, as the reported loads: z up, a force up positive; the inertial force of a mass
+m is m n g against the lift, normal to the flight path (the load factor is the lift over the
+weight, n = L / W), so the wing's plane, at an angle of attack alpha to the path, carries
+-m n g cos(alpha) of it (down, for n > 0; what `InertialLoads` holds is the one-g load at
+alpha 0, and the model scales it by n cos(alpha)); a centre of gravity a distance d aft of the
+elastic axis (EA) turns that force into a torque +m n g d cos(alpha) about the EA (nose up: the
+trailing edge pulled down), so a mass ahead of the EA twists the wing nose down. On a dihedral
+wing the beam carries the component normal to the wing's plane (cos(dihedral) of it). The
+components along the plane (sin(alpha) chordwise, sin(dihedral) spanwise) are what the linear
+beam leaves out, as it leaves out the lift's.
+
+Lumping, as the vibration model lumps it (`solver.dynamics.modes`): each strip's mass, and its
+static moment about the EA, integrated between its stations along the EA (trapezoids), act at
+the strip's middle on the EA; a concentrated mass acts at its station, its offset aft of the EA
+giving its torque. A load at a station counts in the cut just inboard of it (the tip's store is
+carried by the whole last segment); a mass at the root station sits on the clamp and loads only
+the root's reaction.
+
+The beam's rows of these loads (the residual's bending and torsion rows,
+`solver.model.beam`) are constant: they enter the residual beside the aerodynamic ones
+(`solver.statics.system.CoupledSystem.load_per_q`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.inputs.mass import MassModel
+from solver.inputs.wing import Wing
+from solver.model.beam import DEG_PER_RAD
+from solver.model.geometry import arc_length, in_wing_plane
+from solver.model.layout import Layout
+from solver.numerics.cache import cached
+
+__all__ = ["GRAVITY", "InertialLoads", "inertial_loads"]
+
+GRAVITY = 9.80665  # [m/s^2] standard gravity (3rd CGPM, 1901; ISO 80000-3)
+
+
+@dataclass(frozen=True)
+class InertialLoads:
+    """The loads of the wing's own mass at one g (load factor 1): a load factor n multiplies
+    them.
+
+    shear, bending_moment, torque: (N,) [N], [N m], [N m] at each station, as the reported
+    loads are (z up, torque nose-up about the EA); rows: (n_unknowns,) their terms in the
+    residual's bending and torsion rows (its units, `solver.model.beam`; zero elsewhere);
+    mass: [kg] of both halves, concentrated masses included.
+    """
+
+    shear: np.ndarray
+    bending_moment: np.ndarray
+    torque: np.ndarray
+    rows: np.ndarray
+    mass: float
+
+
+def inertial_loads(wing: Wing, layout: Layout) -> InertialLoads | None:
+    """The wing's inertial loads at one g (`InertialLoads`), None without `wing.mass`; kept in
+    the solver's cache (a deterministic function of the wing and the mesh)."""
+    if wing.mass is None:
+        return None
+    key = ("inertial_loads", wing.key, layout)
+    return cached(key, lambda: _inertial_loads(wing, wing.mass, layout), _size)  # type: ignore[arg-type]
+
+
+def _size(loads: InertialLoads | None) -> int:
+    return 0 if loads is None else 4 * loads.rows.nbytes
+
+
+def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoads:
+    arc = arc_length(wing)  # [m] along the EA, in the wing's plane
+    h = np.diff(arc)
+    per_length = mass.mass_per_length.astype(float)
+    offset = (mass.center_of_gravity - wing.elastic_axis) * wing.chord
+    offset = offset * math.cos(math.radians(wing.sweep))  # normal to the EA, in the plane
+    moment_per_length = per_length * offset  # [kg] static moment about the EA
+    if wing.spar is not None:  # on the EA: mass, no static moment
+        per_length = per_length + wing.spar.material.density * wing.spar.area
+    # The weight of a unit mass at one g, in the wing's frame: its component normal to the plane.
+    weight = float(in_wing_plane((0.0, 0.0, -GRAVITY), wing)[2])
+    strip_mass = h * (per_length[:-1] + per_length[1:]) / 2  # [kg]
+    strip_moment = h * (moment_per_length[:-1] + moment_per_length[1:]) / 2  # [kg m]
+    middle = (arc[:-1] + arc[1:]) / 2
+    n = wing.n_stations
+    shear, bending, torque = np.zeros(n), np.zeros(n), np.zeros(n)
+    for i in range(n):
+        outboard = slice(i, None)
+        force = weight * strip_mass[outboard]
+        shear[i] = force.sum()
+        bending[i] = force @ (middle[outboard] - arc[i])
+        torque[i] = -weight * strip_moment[outboard].sum()
+    total = float(2 * strip_mass.sum())
+    for item in mass.concentrated:
+        k = item.station
+        inboard = slice(0, k + 1)  # every cut inboard of the mass, its station's own included
+        shear[inboard] += weight * item.mass
+        bending[inboard] += weight * item.mass * (arc[k] - arc[inboard])
+        torque[inboard] += -weight * item.mass * item.offset
+        total += 2 * item.mass
+    rows = np.zeros(layout.n_unknowns)
+    rows[layout.bending_rows] = _trapezoid(h, bending, wing.bending_stiffness, 1.0)
+    rows[layout.torsion_rows] = _trapezoid(h, torque, wing.torsional_stiffness, DEG_PER_RAD)
+    for array in (shear, bending, torque, rows):
+        array.setflags(write=False)
+    return InertialLoads(shear, bending, torque, rows, total)
+
+
+def _trapezoid(h: np.ndarray, load: np.ndarray, stiffness: np.ndarray, scale: float) -> np.ndarray:
+    """(N-1,) -scale h_i / 2 (f_i / K_i + f_{i+1} / K_{i+1}): a load's term in the beam's rows
+    (`solver.model.beam.Beam.rows`)."""
+    per = load / stiffness
+    return -scale * h / 2 * (per[:-1] + per[1:])

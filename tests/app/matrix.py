@@ -1,0 +1,290 @@
+"""The operation x option matrix, generated from the declarations (tests/app/test_matrix.py).
+
+Nothing here names an operation, an option or a wing part: the factors of a case are read from
+`solver.OPERATION_TABLE` and the input fields' declarations (`solver.fields`):
+
+- the operation's own options, everywhere in its input but its wing, flight and airspeeds: each
+  choice, each flag both ways, each small count (a range of at most 16) at its lowest and
+  middle values, each optional nested input absent or at its defaults (or its example), each
+  optional number absent or at its example;
+- the wing's optional parts: every field of the wing with a default, absent or at its declared
+  example (an optional field without an example is a declaration to complete, and fails here),
+  always present where the operation's row says it `requires` it;
+- the flight: each way of giving it the flight condition declares (`WAYS`: at an alpha, trimmed
+  to a lift, or to a weight and load factor), with the declared examples.
+
+The cases are a covering array of all pairs of factor values (each value of each factor meets
+each value of every other factor in some case), greedy and deterministic, plus the case with
+every factor at its last value and the one with every factor at its first. A value the
+service's checks refuse whatever the rest (one chordwise panel for a wing whose surfaces need a
+hinge node, for an operation that requires surfaces) gets a case of its own and leaves the
+covering array, whose cases then reach a worker (validation only decides it: nothing is solved
+to build the cases).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import json
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import ValidationError
+
+import solver
+from app.problems import Problem
+from app.schemas import REQUESTS
+from app.service import task_of
+from app.settings import Settings
+from solver import fields
+
+__all__ = ["Case", "cases", "factors", "small_wing"]
+
+# What every case has and no factor varies: a small wing (the study's planform on 6 stations)
+# and its airspeeds (below the study wing's divergence).
+_STATIONS = 6
+_AIRSPEEDS = [8.0, 12.0]
+_CASE_OWN = ("wing", "flight", "velocities", "initial_guess")
+_SMALL_COUNT = 16
+# Wing.create's one rule between parts: a spar is given instead of the stiffnesses.
+_REPLACES = {"spar": ("bending_stiffness", "torsional_stiffness")}
+# Every combination of this many factors' values meets in some case.
+STRENGTH = 2
+_SETTINGS = Settings()
+
+
+def small_wing() -> dict[str, Any]:
+    """The design study's planform and stiffness on 6 stations, as the API takes it [SI]."""
+    y = [5.0 * i / (_STATIONS - 1) for i in range(_STATIONS)]
+    chord = [math.sqrt(2.0 - 1.98 * i / (_STATIONS - 1)) for i in range(_STATIONS)]
+    return {
+        "y": y,
+        "chord": chord,
+        "elastic_axis": 0.4,
+        "bending_stiffness": [2e4 * c**3 for c in chord],
+        "torsional_stiffness": [1e3 * c**3 for c in chord],
+    }
+
+
+Factor = tuple[str, list[Any]]  # (dotted path in the request body, its values; None: absent)
+
+
+def _default(field: dataclasses.Field[Any]) -> Any:
+    if field.default is not dataclasses.MISSING:
+        return field.default
+    if field.default_factory is not dataclasses.MISSING:
+        return "factory"
+    return dataclasses.MISSING
+
+
+def _required_fields(cls: type) -> list[str]:
+    return [f.name for f in dataclasses.fields(cls) if _default(f) is dataclasses.MISSING]  # type: ignore[arg-type]
+
+
+def _option_factors(cls: type, prefix: str) -> Iterator[Factor]:
+    """The options of an input class (its wing, flight and airspeeds left to the case)."""
+    for field in dataclasses.fields(cls):  # type: ignore[arg-type]
+        spec = fields.specs(cls).get(field.name)
+        if spec is None or field.name in _CASE_OWN:
+            continue
+        path = prefix if spec.flatten else f"{prefix}{field.name}"
+        default = _default(field)
+        if spec.form == "nested" and spec.given is not None:
+            if default is None and not _required_fields(spec.given):
+                yield path, [None, {}]  # an optional input, absent or at its defaults
+            elif default is None and spec.example is not None:
+                yield path, [None, spec.example]
+            yield from _option_factors(spec.given, path if spec.flatten else path + ".")
+        elif spec.form == "choice":
+            yield path, list(spec.choices)
+        elif spec.form == "flag":
+            yield path, [False, True]
+        elif spec.form == "integer":
+            low, high = spec.limits.ge, spec.limits.le
+            if low is not None and high is not None and high - low <= _SMALL_COUNT:
+                yield path, [int(low), int((low + high) // 2)]
+        elif spec.form == "number" and default is None and spec.example is not None:
+            yield path, [None, spec.example]
+
+
+def _wing_factors(requires: tuple[str, ...]) -> Iterator[Factor]:
+    """Every optional part of the wing, absent or at its declared example (present only, where
+    the operation `requires` it)."""
+    for field in dataclasses.fields(solver.Wing):
+        spec = fields.specs(solver.Wing)[field.name]
+        default = _default(field)
+        if default is dataclasses.MISSING or field.name in small_wing():
+            continue
+        if spec.example is None:
+            raise AssertionError(f"Wing.{field.name} is optional and declares no example")
+        path = f"wing.{field.name}"
+        yield path, [spec.example] if path in requires else [None, spec.example]
+
+
+def _flight_factor(cls: type, without: tuple[str, ...]) -> Factor:
+    """Each way of giving a flight condition, with its declared examples."""
+    declared = fields.specs(cls)
+    base = {
+        name: spec.example
+        for name, spec in declared.items()
+        if name not in without
+        and name not in {n for way in cls.WAYS.values() for n in way}  # type: ignore[attr-defined]
+        and spec.example is not None
+    }
+    ways = [
+        base | {name: declared[name].example for name in names}
+        for names in cls.WAYS.values()  # type: ignore[attr-defined]
+    ]
+    return "flight", ways
+
+
+def factors(operation: solver.Operation) -> list[Factor]:
+    """The factors of `operation`'s cases."""
+    flight_spec = fields.specs(operation.input).get("flight")
+    found = list(_option_factors(operation.input, ""))
+    if flight_spec is not None and flight_spec.given is not None:
+        found.append(_flight_factor(flight_spec.given, flight_spec.without))
+    else:  # a design problem flies as its own flight condition declares
+        problem = next(s for s in fields.specs(operation.input).values() if s.flatten)
+        condition = fields.specs(problem.given)["flight"]  # type: ignore[arg-type]
+        found.append(_flight_factor(condition.given, condition.without))  # type: ignore[arg-type]
+    return found + list(_wing_factors(operation.requires))
+
+
+def _covering(domains: list[int], strength: int) -> list[tuple[int, ...]]:
+    """Rows of value indices in which every combination of values of every `strength`
+    factors meets (a covering array), built greedily: each row starts from the first
+    combination not yet met and takes, factor by factor, the value that meets the most new
+    ones (the lowest on a tie)."""
+    strength = min(strength, len(domains))
+    groups = list(itertools.combinations(range(len(domains)), strength))
+    uncovered = {
+        (group, values)
+        for group in groups
+        for values in itertools.product(*(range(domains[i]) for i in group))
+    }
+    rows: list[tuple[int, ...]] = []
+
+    def _gain(row: dict[int, int], k: int, value: int) -> int:
+        """Combinations not yet met that setting factor k to `value` meets."""
+        trial = row | {k: value}
+        return sum(
+            (g, tuple(trial[i] for i in g)) in uncovered
+            for g in groups
+            if k in g and all(i in trial for i in g)
+        )
+
+    while uncovered:
+        group, values = min(uncovered)
+        row: dict[int, int] = dict(zip(group, values, strict=True))
+        for k in range(len(domains)):
+            if k not in row:
+                row[k] = max(range(domains[k]), key=lambda v, k=k: (_gain(row, k, v), -v))
+        done = tuple(row[k] for k in range(len(domains)))
+        uncovered -= {(g, tuple(done[i] for i in g)) for g in groups}
+        rows.append(done)
+    return rows
+
+
+@dataclass(frozen=True)
+class Case:
+    operation: str
+    body: dict[str, Any]
+    id: str
+
+
+def _body(operation: solver.Operation, settings: dict[str, Any]) -> dict[str, Any]:
+    wing = small_wing()
+    body: dict[str, Any] = {"wing": wing}
+    if "velocities" in fields.specs(operation.input):
+        body["velocities"] = list(_AIRSPEEDS)
+    for path, value in settings.items():
+        if value is None:
+            continue
+        for replaced in _REPLACES.get(path.removeprefix("wing."), ()):
+            wing.pop(replaced, None)
+        *parents, leaf = path.split(".") if path else [""]
+        node = body
+        for parent in parents:
+            node = node.setdefault(parent, {})
+        if leaf:
+            node[leaf] = value
+        else:
+            node.update(value)
+    if "velocities" not in body and "velocity" not in body.get("flight", {}):
+        body["flight"]["velocity"] = _AIRSPEEDS[-1]
+    return body
+
+
+def _id(settings: dict[str, Any]) -> str:
+    shown = []
+    for path, value in settings.items():
+        if value is None or value is False:
+            continue
+        name = path.rsplit(".", 1)[-1]
+        if path == "flight":
+            name = "+".join(k for k in ("alpha", "lift", "weight") if k in value)
+        elif not isinstance(value, bool):
+            name = f"{name}={value}" if isinstance(value, str | int) else name
+        shown.append(name)
+    return ",".join(shown) or "plain"
+
+
+def _accepted(operation: solver.Operation, settings: dict[str, Any]) -> bool:
+    """The service's checks let the case through to a worker (validation only: no solve)."""
+    try:
+        task_of(REQUESTS[operation.name].model_validate(_body(operation, settings)), _SETTINGS)
+    except (ValidationError, Problem):
+        return False
+    return True
+
+
+def _split(
+    operation: solver.Operation, table: list[Factor]
+) -> tuple[list[Factor], list[dict[str, Any]]]:
+    """The factors with the values the service refuses whatever the rest (a surface's hinge
+    with one chordwise panel, for an operation that needs surfaces) taken out, and one case for
+    each such value, beside a base the service accepts: so the combinations of the rest are
+    met in cases that reach a worker."""
+    base = {path: values[0] for path, values in table}
+    if not _accepted(operation, base):
+        for path, values in table:
+            found = next((v for v in values[1:] if _accepted(operation, base | {path: v})), None)
+            if found is not None:
+                base[path] = found
+                break
+    kept: list[Factor] = []
+    alone: list[dict[str, Any]] = []
+    for path, values in table:
+        accepted = [v for v in values if _accepted(operation, base | {path: v})]
+        alone += [base | {path: v} for v in values if v not in accepted]
+        kept.append((path, accepted or values))
+    return kept, alone
+
+
+def cases() -> list[Case]:
+    """Every operation's cases: every `STRENGTH` factors' values met, all first and all last;
+    and each value the service refuses whatever the rest, once."""
+    found = []
+    for operation in solver.OPERATION_TABLE:
+        table, alone = _split(operation, factors(operation))
+        domains = [len(values) for _, values in table]
+        rows = [
+            tuple(0 for _ in domains),
+            tuple(d - 1 for d in domains),
+            *_covering(domains, STRENGTH),
+        ]
+        every = [
+            {path: values[v] for (path, values), v in zip(table, row, strict=True)} for row in rows
+        ]
+        seen: set[str] = set()
+        for settings in [*every, *alone]:
+            body = _body(operation, settings)
+            key = json.dumps(body, sort_keys=True)
+            if key not in seen:
+                seen.add(key)
+                found.append(Case(operation.name, body, f"{operation.name}:{_id(settings)}"))
+    return found
