@@ -66,9 +66,9 @@ STAGES = [
 def serve(port: int, requests: int, trace: Path) -> None:
     """The service with its probes; writes the stamps to `trace` after the `requests`-th
     /solve."""
+    import app.routes.solve as solve_route
     import uvicorn
 
-    import app.routes.solve as solve_route
     from app.execution.processes import LocalWorkers
     from app.main import app as service_app
     from app.service import Service
