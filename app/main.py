@@ -21,6 +21,7 @@ import solver
 from app import __version__, security
 from app.execution.pool import WorkerPool
 from app.jobs import JobManager
+from app.jobs.store import Store
 from app.metrics import ASGIApp, Message, Metrics, MetricsMiddleware, Scope
 from app.problems import PROBLEM_MEDIA_TYPE, Problem, install_handlers, problem_response
 from app.routes import health, operations, page, wing
@@ -185,7 +186,10 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     metrics = Metrics()
     pool = WorkerPool(settings, metrics)
     service = Service(settings, pool, metrics)
-    jobs = JobManager(settings, service, metrics)
+    # The jobs, and with replicas (PostgreSQL) the API keys and rate-limit buckets: opened in
+    # the lifespan; an unreachable database is retried there, not a failed start (/readyz).
+    store = Store.of(settings.database_url, settings.jobs_db, settings.retry_after)
+    jobs = JobManager(settings, service, metrics, store=store)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -223,7 +227,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_middleware(
         BodyLimitMiddleware, limit=settings.max_body_bytes, path_limits={"/jobs": job_body}
     )
-    security.install_access(app, settings, metrics)  # API keys and rate limits, inside the metrics
+    # API keys and rate limits, inside the metrics
+    security.install_access(app, settings, metrics, store)
     app.add_middleware(MetricsMiddleware, metrics=metrics)
     security.install_headers(app, settings)  # CORS and security headers on every response
     app.add_middleware(Arrival)  # outermost: a synchronous wait counts from the arrival

@@ -15,7 +15,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import AliasChoices, Field, field_validator
+from pydantic import AliasChoices, Field, field_validator, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 __all__ = [
@@ -187,7 +187,46 @@ class Settings(BaseSettings):
         default_factory=default_jobs_db,
         description=(
             "SQLite file of the jobs (POST /jobs): finished jobs survive a restart. Default: "
-            "~/.cache/flexwing/jobs.sqlite3 (under XDG_CACHE_HOME when set)."
+            "~/.cache/flexwing/jobs.sqlite3 (under XDG_CACHE_HOME when set). Unused with "
+            "FLEXWING_DATABASE_URL."
+        ),
+    )
+    database_url: str | None = Field(
+        default=None,
+        description=(
+            "PostgreSQL database shared by every replica (postgresql://user:password@host:5432/"
+            "dbname; libpq parameters such as sslmode may follow): jobs, their items, API keys "
+            "(FLEXWING_API_KEYS_IN_DATABASE) and rate-limit buckets live there, and any replica "
+            "answers for any job. The service creates and migrates its tables. Unset: the "
+            "SQLite file FLEXWING_JOBS_DB (one machine)."
+        ),
+    )
+    job_lease: float = Field(
+        default=10.0,
+        ge=1.0,
+        le=3600.0,
+        description=(
+            "[s] how long a replica's claim on a job it runs lasts unless renewed (every "
+            "lease/4, at most every second): a replica that dies leaves its jobs to another "
+            "after at most this."
+        ),
+    )
+    job_poll_interval: float = Field(
+        default=0.5,
+        gt=0,
+        le=60.0,
+        description=(
+            "[s] how often an idle replica looks for queued jobs in the store (one submitted "
+            "here starts at once)."
+        ),
+    )
+    job_attempts: int = Field(
+        default=3,
+        ge=1,
+        le=100,
+        description=(
+            "Times a job is taken up after the replica running it died; then it fails with "
+            "/problems/job-interrupted (a job that kills its replica does not kill them all)."
         ),
     )
     job_retention: float = Field(
@@ -252,6 +291,15 @@ class Settings(BaseSettings):
             "no keys (keep the service on loopback)."
         ),
     )
+    api_keys_in_database: bool = Field(
+        default=False,
+        description=(
+            "Keys in the jobs database (FLEXWING_DATABASE_URL's, or the SQLite file) instead of "
+            "a key file: python -m app.keys create --database URL --name NAME; every replica "
+            "sees a key created or revoked within a second. Turns keys on as "
+            "FLEXWING_API_KEYS_FILE does (use one or the other)."
+        ),
+    )
     rate_limit: float | None = Field(
         default=None,
         ge=0,
@@ -276,12 +324,34 @@ class Settings(BaseSettings):
     )
 
     @property
+    def keys_on(self) -> bool:
+        """Whether requests need an API key (a key file, or keys in the database)."""
+        return self.api_keys_file is not None or self.api_keys_in_database
+
+    @property
     def client_rate_limit(self) -> float:
         """[requests/s] the rate limit in force: FLEXWING_RATE_LIMIT, or when unset 50 per key
         with API keys and none (0) without."""
         if self.rate_limit is not None:
             return self.rate_limit
-        return KEYED_RATE_LIMIT if self.api_keys_file is not None else 0.0
+        return KEYED_RATE_LIMIT if self.keys_on else 0.0
+
+    @field_validator("database_url")
+    @classmethod
+    def _postgres(cls, url: str | None) -> str | None:
+        if url is None or url == "":
+            return None
+        if not re.match(r"postgres(ql)?://", url):
+            raise ValueError("a PostgreSQL URL: postgresql://user:password@host:port/dbname")
+        return url
+
+    @model_validator(mode="after")
+    def _one_key_source(self) -> Settings:
+        if self.api_keys_file is not None and self.api_keys_in_database:
+            raise ValueError(
+                "FLEXWING_API_KEYS_FILE and FLEXWING_API_KEYS_IN_DATABASE: keys come from one"
+            )
+        return self
 
     @field_validator("cors_origins")
     @classmethod

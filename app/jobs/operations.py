@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import asyncio
 import json
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal, Protocol, TypeVar, Union
 
@@ -61,6 +61,12 @@ class JobContext(Protocol):
 
     def item_answered(self, index: int, ok: bool, line: str) -> None:
         """Record batch item `index`'s NDJSON line (ok: a result, else a problem)."""
+        ...
+
+    @property
+    def answered(self) -> Collection[int]:
+        """Batch items answered already (a job taken up from a replica that stopped): not
+        asked again."""
         ...
 
     def progress(self, done: int, total: int) -> None:
@@ -180,7 +186,7 @@ async def answer_item(context: JobContext, index: int, request: SolveRequest) ->
 
 
 async def answer_chunk(
-    context: JobContext, indices: range, items: list[SolveRequest]
+    context: JobContext, indices: Sequence[int], items: list[SolveRequest]
 ) -> list[tuple[bool, str]]:
     """(ok, NDJSON line) of consecutive batch items, answered as one worker task; a chunk the
     pool lost as a whole (its worker died twice, its budget spent) is asked again one item at
@@ -257,18 +263,20 @@ async def _run_batch(context: JobContext, request: BatchRequest) -> None:
     `context.lanes` chunks at a time (enough to keep every worker busy); each chunk's lines are
     recorded as it is answered."""
     items = request.items
-    chunks = _Chunks(len(items), context.lanes, context.parallelism, context.chunk_seconds)
+    todo = [index for index in range(len(items)) if index not in context.answered]
+    chunks = _Chunks(len(todo), context.lanes, context.parallelism, context.chunk_seconds)
     loop = asyncio.get_running_loop()
 
     async def lane() -> None:
-        while (indices := chunks.take()) is not None:  # shared: the next unanswered chunk
+        while (taken := chunks.take()) is not None:  # shared: the next unanswered chunk
+            indices = [todo[position] for position in taken]
             started = loop.time()
             lines = await answer_chunk(context, indices, items)
             chunks.took(len(indices), loop.time() - started)
             for index, (ok, line) in zip(indices, lines, strict=True):
                 context.item_answered(index, ok, line)
 
-    await asyncio.gather(*(lane() for _ in range(min(context.lanes, len(items)))))
+    await asyncio.gather(*(lane() for _ in range(min(context.lanes, len(todo)))))
     return None
 
 

@@ -1,93 +1,40 @@
-"""Jobs in an embedded SQLite database (stdlib sqlite3), written from one thread.
+"""The store: jobs, their items, leases, rate-limit buckets and API keys, in SQLite (one
+machine, the default) or PostgreSQL (FLEXWING_DATABASE_URL: replicas share it), behind one
+interface. The SQL below is written once for both (`app.jobs.stores.dialects` says the little
+that differs); the tables are described in `app.jobs.stores.schema`.
 
-One thread owns the connection; the event loop hands it small operations through a queue
-(`write`: fire and forget, in order; `read`: awaitable) and never waits on the disk. The thread
-runs what is queued, then commits once: many item writes of a busy batch share one commit. A read
-sees every write queued before it, and its answer is handed back only after that commit: what a
-client has read survives even a SIGKILL of the service.
+Running a job is leased, not locked by a process: a replica *claims* a queued job (or one whose
+lease has expired: its replica died) and holds it for `lease` seconds, renewed by its heartbeat.
+Everything a running job writes is fenced by its lease (`owner = ? AND status = 'running'`), so
+a replica that lost its lease (it stalled, its database was away) can no longer record
+anything; an item is recorded once (`ON CONFLICT DO NOTHING`), so no item is answered twice.
+On PostgreSQL a claim passes rows another claim holds (SKIP LOCKED) and an item's fence holds
+its job's row until the commit (FOR SHARE), so a claim never overtakes an item being written.
 
-Tables:
-
-    jobs   one row per job: id, operation, status, owner (the service instance running it),
-           principal (the API key that submitted it, `app.security.keys.ApiKey.principal`;
-           "" without keys: only that key sees the job), times [s since the epoch], progress
-           (done, total, problems), result and problem as JSON text;
-    items  one row per answered batch item: (job, idx) -> its NDJSON line; seq is the order in
-           which items were answered (what items.ndjson streams by).
-
-Ids are `new_job_id()`: 128 bits from `secrets`, so an id is as hard to guess as a key, with
-or without API keys.
-
-Owners: each service instance holds an exclusive lock (`fcntl.flock`) on a file of its own beside
-the database for as long as it lives, released by the kernel however it ends. A job still queued
-or running under an owner whose lock is free was interrupted: `interrupt_orphans` marks it
-failed. So a restart reports the jobs it lost, and several instances may share one database
-without failing each other's jobs.
+Ids are `new_job_id()`: 128 bits from `secrets`, so an id is as hard to guess as a key.
 """
 
 from __future__ import annotations
 
-import asyncio
-import concurrent.futures
-import contextlib
-import fcntl
-import functools
 import json
-import logging
-import os
-import queue
 import secrets
-import sqlite3
-import threading
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
-from app.problems import Problem
+from app.jobs.stores import Database, Dialect, PostgreSQL, Session, SQLite, migrate
 
-__all__ = ["JOB_ID_BYTES", "JobRow", "JobStore", "OwnerLock", "new_job_id"]
-
-log = logging.getLogger(__name__)
+__all__ = ["JOB_ID_BYTES", "Claim", "JobRow", "Store", "interrupted_problem", "new_job_id"]
 
 T = TypeVar("T")
 JobRow = dict[str, Any]
+Claim = dict[str, Any]
 
-_SCHEMA = """
-CREATE TABLE IF NOT EXISTS jobs (
-    id TEXT PRIMARY KEY,
-    operation TEXT NOT NULL,
-    status TEXT NOT NULL,
-    owner TEXT NOT NULL,
-    principal TEXT NOT NULL DEFAULT '',
-    created REAL NOT NULL,
-    started REAL,
-    finished REAL,
-    expires REAL,
-    done INTEGER NOT NULL DEFAULT 0,
-    total INTEGER NOT NULL,
-    problems INTEGER NOT NULL DEFAULT 0,
-    result TEXT,
-    problem TEXT
-);
-CREATE INDEX IF NOT EXISTS jobs_by_creation ON jobs (created DESC, id DESC);
-CREATE INDEX IF NOT EXISTS jobs_by_expiry ON jobs (expires);
-CREATE INDEX IF NOT EXISTS jobs_by_owner ON jobs (owner, status);
-CREATE TABLE IF NOT EXISTS items (
-    job TEXT NOT NULL,
-    idx INTEGER NOT NULL,
-    seq INTEGER NOT NULL,
-    ok INTEGER NOT NULL,
-    line TEXT NOT NULL,
-    PRIMARY KEY (job, idx)
-);
-CREATE INDEX IF NOT EXISTS items_by_answer ON items (job, seq);
-"""
-_UNFINISHED = ("queued", "running")
+JOB_ID_BYTES = 16  # 128 random bits
 _JOB_COLUMNS = (
     "id, operation, status, owner, principal, created, started, finished, expires, done, total, "
-    "problems"
+    "problems, lease_expires, cancel_requested"
 )
-JOB_ID_BYTES = 16  # 128 random bits
+_FENCE = "id = ? AND owner = ? AND status = 'running'"
 
 
 def new_job_id() -> str:
@@ -95,274 +42,9 @@ def new_job_id() -> str:
     return secrets.token_urlsafe(JOB_ID_BYTES)
 
 
-_BATCH_LIMIT = 512  # queued operations run under one commit at most
-_STOP = object()
-
-
-class OwnerLock:
-    """This instance's lock file `<db>.owners/<owner>.lock`, held (flock) while it lives."""
-
-    def __init__(self, db: Path, owner: str) -> None:
-        self.directory = db.with_name(db.name + ".owners")
-        self.owner = owner
-        self._fd: int | None = None
-
-    def acquire(self) -> None:
-        self.directory.mkdir(parents=True, exist_ok=True)
-        self._fd = os.open(self.directory / f"{self.owner}.lock", os.O_RDWR | os.O_CREAT, 0o600)
-        fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-
-    def release(self) -> None:
-        if self._fd is None:
-            return
-        with contextlib.suppress(OSError):
-            (self.directory / f"{self.owner}.lock").unlink()
-        os.close(self._fd)
-        self._fd = None
-
-    def is_alive(self, owner: str) -> bool:
-        """Whether the instance `owner` still holds its lock."""
-        path = self.directory / f"{owner}.lock"
-        try:
-            fd = os.open(path, os.O_RDWR)
-        except FileNotFoundError:
-            return False
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            return True
-        finally:
-            os.close(fd)
-        with contextlib.suppress(OSError):
-            path.unlink()
-        return False
-
-
-class JobStore:
-    """The jobs database behind its writer thread (see the module docstring)."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self._tasks: queue.SimpleQueue[Any] = queue.SimpleQueue()
-        self._thread: threading.Thread | None = None
-
-    # --------------------------------------------------------------------- thread plumbing
-
-    async def open(self) -> None:
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._thread = threading.Thread(target=self._serve, name="flexwing-jobs-db", daemon=True)
-        self._thread.start()
-        await self.read(_create_schema)
-
-    async def close(self) -> None:
-        if self._thread is None:
-            return
-        self._tasks.put(_STOP)
-        await asyncio.to_thread(self._thread.join, 30)
-        self._thread = None
-
-    def write(self, operation: Callable[..., Any], *args: Any) -> None:
-        """Queue `operation(connection, *args)`; failures are logged."""
-        self._tasks.put((operation, args, None))
-
-    async def read(self, operation: Callable[..., T], *args: Any) -> T:
-        """Run `operation(connection, *args)` after everything queued before it; 503
-        not-ready while the database is not open (an app without its lifespan, a closed one),
-        where a read would wait for ever."""
-        if self._thread is None:
-            raise Problem("not-ready", "the jobs database is not open")
-        future: concurrent.futures.Future[T] = concurrent.futures.Future()
-        self._tasks.put((operation, args, future))
-        return await asyncio.wrap_future(future)
-
-    def _serve(self) -> None:
-        connection = sqlite3.connect(self.path, isolation_level="DEFERRED")
-        connection.execute("PRAGMA journal_mode=WAL")
-        connection.execute("PRAGMA synchronous=NORMAL")
-        stop = False
-        while not stop:
-            batch = [self._tasks.get()]
-            while len(batch) < _BATCH_LIMIT:
-                try:
-                    batch.append(self._tasks.get_nowait())
-                except queue.Empty:
-                    break
-            answers = []
-            for task in batch:
-                if task is _STOP:
-                    stop = True
-                else:
-                    answers.append(self._run(connection, *task))
-            connection.commit()
-            for answer in answers:
-                if answer is not None:
-                    answer()
-        connection.close()
-
-    @staticmethod
-    def _run(
-        connection: sqlite3.Connection,
-        operation: Callable[..., Any],
-        args: tuple[Any, ...],
-        future: concurrent.futures.Future[Any] | None,
-    ) -> Callable[[], None] | None:
-        """Run one operation; for a read, what hands its outcome back (after the commit)."""
-        try:
-            value = operation(connection, *args)
-        except Exception as error:
-            if future is None:
-                log.exception("jobs database: %s failed", operation.__name__)
-                return None
-            return functools.partial(future.set_exception, error)
-        return None if future is None else functools.partial(future.set_result, value)
-
-
-# --------------------------------------------------------- operations (run in the thread)
-
-
-def _create_schema(connection: sqlite3.Connection) -> None:
-    connection.executescript(_SCHEMA)
-    columns = {row[1] for row in connection.execute("PRAGMA table_info(jobs)")}
-    if "principal" not in columns:  # a database from before API keys: its jobs are keyless
-        with contextlib.suppress(sqlite3.OperationalError):  # another process added it first
-            connection.execute("ALTER TABLE jobs ADD COLUMN principal TEXT NOT NULL DEFAULT ''")
-    connection.execute(
-        "CREATE INDEX IF NOT EXISTS jobs_by_principal ON jobs (principal, created DESC, id DESC)"
-    )
-
-
-def insert_job(connection: sqlite3.Connection, row: JobRow) -> None:
-    columns = ", ".join(row)
-    marks = ", ".join("?" for _ in row)
-    connection.execute(f"INSERT INTO jobs ({columns}) VALUES ({marks})", tuple(row.values()))
-
-
-def update_job(connection: sqlite3.Connection, job_id: str, fields: JobRow) -> None:
-    assignments = ", ".join(f"{name} = ?" for name in fields)
-    connection.execute(f"UPDATE jobs SET {assignments} WHERE id = ?", (*fields.values(), job_id))
-
-
-def insert_item(
-    connection: sqlite3.Connection, job_id: str, index: int, seq: int, ok: bool, line: str
-) -> None:
-    connection.execute(
-        "INSERT OR REPLACE INTO items (job, idx, seq, ok, line) VALUES (?, ?, ?, ?, ?)",
-        (job_id, index, seq, ok, line),
-    )
-
-
-def _as_row(cursor: sqlite3.Cursor, values: tuple[Any, ...]) -> JobRow:
-    return {column[0]: value for column, value in zip(cursor.description, values, strict=True)}
-
-
-def get_job(connection: sqlite3.Connection, job_id: str, with_result: bool) -> JobRow | None:
-    columns = _JOB_COLUMNS + (", result, problem" if with_result else ", problem")
-    cursor = connection.execute(f"SELECT {columns} FROM jobs WHERE id = ?", (job_id,))
-    values = cursor.fetchone()
-    return None if values is None else _as_row(cursor, values)
-
-
-def list_jobs(
-    connection: sqlite3.Connection,
-    limit: int,
-    before: tuple[float, str] | None,
-    status: str | None,
-    now: float,
-    principal: str,
-) -> list[JobRow]:
-    """`principal`'s jobs, newest first, `limit` at most, created before the cursor `before`
-    (created, id)."""
-    where = ["principal = ?", "(expires IS NULL OR expires > ?)"]
-    args: list[Any] = [principal, now]
-    if before is not None:
-        where.append("(created < ? OR (created = ? AND id < ?))")
-        args += [before[0], before[0], before[1]]
-    if status is not None:
-        where.append("status = ?")
-        args.append(status)
-    cursor = connection.execute(
-        f"SELECT {_JOB_COLUMNS}, problem FROM jobs WHERE {' AND '.join(where)} "
-        "ORDER BY created DESC, id DESC LIMIT ?",
-        (*args, limit),
-    )
-    return [_as_row(cursor, values) for values in cursor.fetchall()]
-
-
-def item_lines_by_answer(
-    connection: sqlite3.Connection, job_id: str, after_seq: int, limit: int
-) -> list[tuple[int, str]]:
-    """(seq, line) of the items answered after `after_seq`, in the order they were answered."""
-    cursor = connection.execute(
-        "SELECT seq, line FROM items WHERE job = ? AND seq > ? ORDER BY seq LIMIT ?",
-        (job_id, after_seq, limit),
-    )
-    return list(cursor.fetchall())
-
-
-def item_lines_by_index(
-    connection: sqlite3.Connection, job_id: str, after_index: int, limit: int
-) -> list[tuple[int, str]]:
-    """(index, line) of the items after `after_index`, in request order."""
-    cursor = connection.execute(
-        "SELECT idx, line FROM items WHERE job = ? AND idx > ? ORDER BY idx LIMIT ?",
-        (job_id, after_index, limit),
-    )
-    return list(cursor.fetchall())
-
-
-def count_by_status(connection: sqlite3.Connection, now: float) -> dict[str, int]:
-    cursor = connection.execute(
-        "SELECT status, COUNT(*) FROM jobs WHERE expires IS NULL OR expires > ? GROUP BY status",
-        (now,),
-    )
-    return dict(cursor.fetchall())
-
-
-def delete_expired(connection: sqlite3.Connection, now: float) -> dict[str, int]:
-    """Delete the jobs (and items) whose retention has ended; how many, by status."""
-    cursor = connection.execute("SELECT id, status FROM jobs WHERE expires <= ?", (now,))
-    expired = cursor.fetchall()
-    counts: dict[str, int] = {}
-    for job_id, status in expired:
-        connection.execute("DELETE FROM items WHERE job = ?", (job_id,))
-        connection.execute("DELETE FROM jobs WHERE id = ?", (job_id,))
-        counts[status] = counts.get(status, 0) + 1
-    return counts
-
-
-def unfinished_owners(connection: sqlite3.Connection) -> list[str]:
-    cursor = connection.execute(
-        "SELECT DISTINCT owner FROM jobs WHERE status IN (?, ?)", _UNFINISHED
-    )
-    return [owner for (owner,) in cursor.fetchall()]
-
-
-def interrupt_jobs_of(
-    connection: sqlite3.Connection, owner: str, now: float, retention: float
-) -> int:
-    """Mark every queued or running job of `owner` failed with a job-interrupted problem."""
-    cursor = connection.execute(
-        "SELECT id, status, done, total FROM jobs WHERE owner = ? AND status IN (?, ?)",
-        (owner, *_UNFINISHED),
-    )
-    rows = cursor.fetchall()
-    for job_id, status, done, total in rows:
-        # A batch's answered items are all here; its progress column may lag (written every
-        # half second).
-        answered, problems = connection.execute(
-            "SELECT COUNT(*), COUNT(*) - COALESCE(SUM(ok), 0) FROM items WHERE job = ?", (job_id,)
-        ).fetchone()
-        done = max(done, answered)
-        problem = interrupted_problem(status, done, total)
-        connection.execute(
-            "UPDATE jobs SET status = 'failed', finished = ?, expires = ?, problem = ?, "
-            "done = ?, problems = MAX(problems, ?) WHERE id = ?",
-            (now, now + retention, json.dumps(problem), done, problems, job_id),
-        )
-    return len(rows)
-
-
-def interrupted_problem(status: str, done: int, total: int) -> dict[str, Any]:
+def interrupted_problem(
+    status: str, done: int, total: int, why: str | None = None
+) -> dict[str, Any]:
     """The job-interrupted problem of a job that was `status` when its service stopped."""
     if status == "queued":
         what = "before this job started"
@@ -372,13 +54,363 @@ def interrupted_problem(status: str, done: int, total: int) -> dict[str, Any]:
         "type": "/problems/job-interrupted",
         "title": "Job interrupted",
         "status": 503,
-        "detail": f"the service stopped {what}; submit it again",
+        "detail": why or f"the service stopped {what}; submit it again",
         "done": done,
         "total": total,
     }
 
 
-def owner_of(connection: sqlite3.Connection, job_id: str) -> str | None:
-    """The instance that holds a job (its lock's owner), or None for an unknown job."""
-    found = connection.execute("SELECT owner FROM jobs WHERE id = ?", (job_id,)).fetchone()
-    return None if found is None else str(found[0])
+class Store:
+    """The store of one service process: its `Database` connection and what it asks of it."""
+
+    def __init__(self, dialect: Dialect, *, retry_after: int = 1) -> None:
+        self.dialect = dialect
+        self.database = Database(dialect, migrate, retry_after=retry_after)
+        # Claims and rate-limit buckets on a connection of their own: never queued behind a
+        # batch's item writes, and their commits do not wait for the disk. Losing one with the
+        # database server's last moments costs a retry, never a job: a claim not kept leaves
+        # the job claimable again (everything a job writes is fenced by its claim), a token
+        # not kept a request's worth of limit.
+        self.coordination = Database(dialect, migrate, retry_after=retry_after, durable=False)
+
+    @classmethod
+    def of(cls, database_url: str | None, jobs_db: Path, retry_after: int = 1) -> Store:
+        """PostgreSQL at `database_url` when set, else the SQLite file `jobs_db`."""
+        dialect: Dialect = PostgreSQL(database_url) if database_url else SQLite(jobs_db)
+        return cls(dialect, retry_after=retry_after)
+
+    @property
+    def name(self) -> str:
+        """The database, as /readyz names it (no password)."""
+        return self.dialect.name
+
+    @property
+    def shared(self) -> bool:
+        """Whether replicas on other machines share it (PostgreSQL)."""
+        return self.dialect.shared
+
+    @property
+    def available(self) -> bool:
+        return self.database.available
+
+    @property
+    def reason(self) -> str | None:
+        """Why it is not available, or None."""
+        return self.database.reason
+
+    async def open(self) -> None:
+        await self.database.open()
+        await self.coordination.open()
+
+    async def close(self) -> None:
+        await self.coordination.close()
+        await self.database.close()
+
+    @property
+    def is_open(self) -> bool:
+        return self.database.is_open
+
+    # --------------------------------------------------------------------------- jobs
+
+    async def submit(self, row: JobRow, max_queued: int) -> bool:
+        """Store a queued job unless `max_queued` jobs wait already (False then). Answered
+        after its commit: an accepted job is never lost."""
+        return await self.database.read(_submit, row, max_queued)
+
+    def insert_job(self, row: JobRow) -> None:
+        """Store a job (queued behind the writes before it): a synchronous call adopted."""
+        self.database.write(_insert_job, row)
+
+    def update_job(self, job_id: str, owner: str, fields: JobRow) -> None:
+        """Set `fields` of a job `owner` runs (nothing if its lease has passed to another)."""
+        self.database.write(_update_job, job_id, owner, fields)
+
+    def insert_item(
+        self, job_id: str, owner: str, index: int, seq: int, ok: bool, line: str
+    ) -> None:
+        """Record a batch item's line, once, while `owner` runs the job."""
+        self.database.write(_insert_item, job_id, owner, index, seq, ok, line)
+
+    def release(self, job_id: str, owner: str, done: int, problems: int) -> None:
+        """Hand a running job back to the queue (its replica is stopping): another replica, or
+        this one's next start, takes it up where it was (a batch's answered items stay)."""
+        self.database.write(_release, job_id, owner, done, problems)
+
+    async def get_job(self, job_id: str, with_result: bool = False) -> JobRow | None:
+        return await self.database.read(_get_job, job_id, with_result)
+
+    async def list_jobs(
+        self,
+        limit: int,
+        before: tuple[float, str] | None,
+        status: str | None,
+        now: float,
+        principal: str,
+    ) -> list[JobRow]:
+        """`principal`'s jobs, newest first, `limit` at most, created before the cursor
+        `before` (created, id)."""
+        return await self.database.read(_list_jobs, limit, before, status, now, principal)
+
+    async def items_by_answer(self, job_id: str, after_seq: int, limit: int) -> list[Any]:
+        """(seq, line) of the items answered after `after_seq`, in the order answered."""
+        return await self.database.read(_items_by, "seq", job_id, after_seq, limit)
+
+    async def items_by_index(self, job_id: str, after_index: int, limit: int) -> list[Any]:
+        """(index, line) of the items after `after_index`, in request order."""
+        return await self.database.read(_items_by, "idx", job_id, after_index, limit)
+
+    async def count_by_status(self, now: float) -> dict[str, int]:
+        return await self.database.read(_count_by_status, now)
+
+    async def delete_expired(self, now: float) -> dict[str, int]:
+        """Delete the jobs (and items) whose retention has ended; how many, by status."""
+        return await self.database.read(_delete_expired, now)
+
+    async def claim(self, owner: str, now: float, lease: float) -> Claim | None:
+        """The oldest job that is queued, or running under an expired lease, now `owner`'s
+        until `now + lease`, with its request and (a batch's) items answered so far; None."""
+        return await self.coordination.read(_claim, owner, now, lease)
+
+    async def renew(self, owner: str, until: float, job_ids: list[str]) -> dict[str, bool]:
+        """Extend `owner`'s leases of `job_ids` (the jobs it runs) to `until`: {job id: cancel
+        asked for} of those it still holds."""
+        # On the jobs' own connection: after every job this replica stored (an adopted call's
+        # insert is queued there), so a renewal never misses one of its jobs.
+        return await self.database.read(_renew, owner, until, job_ids)
+
+    async def cancel_queued(self, job_id: str, principal: str, now: float, expires: float) -> bool:
+        """Cancel a job of `principal` that no replica runs (queued, or its lease expired)."""
+        return await self.database.read(_cancel_queued, job_id, principal, now, expires)
+
+    async def ask_cancel(self, job_id: str, principal: str) -> None:
+        """Ask the replica running a job of `principal` to cancel it (at its next heartbeat)."""
+        await self.database.read(_ask_cancel, job_id, principal)
+
+    # ------------------------------------------------------------------ rate-limit buckets
+
+    async def take_token(self, client: str, rate: float, burst: int, now: float) -> float:
+        """One request of `client` from its token bucket (`burst` at most, refilled at `rate`
+        [1/s]): 0.0 if it may go ahead, else [s] until its next token."""
+        return await self.coordination.read(_take_token, client, rate, burst, now)
+
+    async def forget_buckets(self, before: float) -> None:
+        """Drop buckets untouched since `before` (full again by then: as new ones)."""
+        await self.coordination.read(_forget_buckets, before)
+
+    # ------------------------------------------------------------------------- API keys
+
+    async def api_keys(self) -> list[tuple[str, str]]:
+        """(name, SHA-256 digest in hex) of every key kept here."""
+        return await self.database.read(_api_keys)
+
+    async def add_api_key(self, name: str, digest: str, now: float) -> bool:
+        """Keep a key's digest under `name`; False if the name or the key is there already."""
+        return await self.database.read(_add_api_key, name, digest, now)
+
+    async def revoke_api_key(self, name: str) -> bool:
+        return await self.database.read(_revoke_api_key, name)
+
+
+# --------------------------------------------------------- operations (run in the thread)
+
+
+def _as_row(cursor: Any, values: Any) -> JobRow:
+    return {column[0]: value for column, value in zip(cursor.description, values, strict=True)}
+
+
+def _insert_job(session: Session, row: JobRow) -> None:
+    columns = ", ".join(row)
+    marks = ", ".join("?" for _ in row)
+    session.execute(
+        f"INSERT INTO jobs ({columns}) VALUES ({marks}) ON CONFLICT (id) DO NOTHING",
+        tuple(row.values()),
+    )
+
+
+def _submit(session: Session, row: JobRow, max_queued: int) -> bool:
+    (queued,) = session.execute("SELECT COUNT(*) FROM jobs WHERE status = 'queued'").fetchone()
+    if queued >= max_queued:
+        return False
+    _insert_job(session, row)
+    return True
+
+
+def _update_job(session: Session, job_id: str, owner: str, fields: JobRow) -> None:
+    assignments = ", ".join(f"{name} = ?" for name in fields)
+    session.execute(
+        f"UPDATE jobs SET {assignments} WHERE {_FENCE}", (*fields.values(), job_id, owner)
+    )
+
+
+def _insert_item(
+    session: Session, job_id: str, owner: str, index: int, seq: int, ok: bool, line: str
+) -> None:
+    session.execute(
+        "INSERT INTO items (job, idx, seq, ok, line) SELECT ?, ?, ?, ?, ? "
+        f"WHERE EXISTS (SELECT 1 FROM jobs WHERE {_FENCE}{session.dialect.share_lock}) "
+        "ON CONFLICT (job, idx) DO NOTHING",
+        (job_id, index, seq, int(ok), line, job_id, owner),
+    )
+
+
+def _release(session: Session, job_id: str, owner: str, done: int, problems: int) -> None:
+    session.execute(
+        "UPDATE jobs SET status = 'queued', owner = '', lease_expires = NULL, "
+        f"attempts = attempts - 1, done = ?, problems = ? WHERE {_FENCE}",
+        (done, problems, job_id, owner),
+    )
+
+
+def _get_job(session: Session, job_id: str, with_result: bool) -> JobRow | None:
+    columns = _JOB_COLUMNS + (", result, problem" if with_result else ", problem")
+    cursor = session.execute(f"SELECT {columns} FROM jobs WHERE id = ?", (job_id,))
+    values = cursor.fetchone()
+    return None if values is None else _as_row(cursor, values)
+
+
+def _list_jobs(
+    session: Session,
+    limit: int,
+    before: tuple[float, str] | None,
+    status: str | None,
+    now: float,
+    principal: str,
+) -> list[JobRow]:
+    where = ["principal = ?", "(expires IS NULL OR expires > ?)"]
+    args: list[Any] = [principal, now]
+    if before is not None:
+        where.append("(created < ? OR (created = ? AND id < ?))")
+        args += [before[0], before[0], before[1]]
+    if status is not None:
+        where.append("status = ?")
+        args.append(status)
+    cursor = session.execute(
+        f"SELECT {_JOB_COLUMNS}, problem FROM jobs WHERE {' AND '.join(where)} "
+        "ORDER BY created DESC, id DESC LIMIT ?",
+        (*args, limit),
+    )
+    return [_as_row(cursor, values) for values in cursor.fetchall()]
+
+
+def _items_by(session: Session, order: str, job_id: str, after: int, limit: int) -> list[Any]:
+    cursor = session.execute(
+        f"SELECT {order}, line FROM items WHERE job = ? AND {order} > ? ORDER BY {order} LIMIT ?",
+        (job_id, after, limit),
+    )
+    return [tuple(row) for row in cursor.fetchall()]
+
+
+def _count_by_status(session: Session, now: float) -> dict[str, int]:
+    cursor = session.execute(
+        "SELECT status, COUNT(*) FROM jobs WHERE expires IS NULL OR expires > ? GROUP BY status",
+        (now,),
+    )
+    return {status: int(count) for status, count in cursor.fetchall()}
+
+
+def _delete_expired(session: Session, now: float) -> dict[str, int]:
+    expired = session.execute("SELECT id, status FROM jobs WHERE expires <= ?", (now,)).fetchall()
+    counts: dict[str, int] = {}
+    for job_id, status in expired:
+        session.execute("DELETE FROM items WHERE job = ?", (job_id,))
+        session.execute("DELETE FROM jobs WHERE id = ?", (job_id,))
+        counts[status] = counts.get(status, 0) + 1
+    return counts
+
+
+def _claim(session: Session, owner: str, now: float, lease: float) -> Claim | None:
+    cursor = session.execute(
+        "UPDATE jobs SET status = 'running', owner = ?, lease_expires = ?, "
+        "attempts = attempts + 1, started = COALESCE(started, ?) "
+        "WHERE id = (SELECT id FROM jobs WHERE status = 'queued' OR (status = 'running' AND "
+        "(lease_expires IS NULL OR lease_expires < ?)) "
+        f"ORDER BY created, id LIMIT 1{session.dialect.skip_locked}) "
+        f"RETURNING {_JOB_COLUMNS}, request, attempts",
+        (owner, now + lease, now, now),
+    )
+    values = cursor.fetchone()
+    if values is None:
+        return None
+    claim = _as_row(cursor, values)
+    answered = session.execute(
+        "SELECT idx, seq, ok FROM items WHERE job = ?", (claim["id"],)
+    ).fetchall()
+    claim["answered"] = {int(index): bool(ok) for index, _, ok in answered}
+    claim["answers"] = max((int(seq) for _, seq, _ in answered), default=0)
+    return claim
+
+
+def _renew(session: Session, owner: str, until: float, job_ids: list[str]) -> dict[str, bool]:
+    if not job_ids:
+        return {}
+    marks = ", ".join("?" for _ in job_ids)
+    cursor = session.execute(
+        "UPDATE jobs SET lease_expires = ? WHERE owner = ? AND status = 'running' "
+        f"AND id IN ({marks}) RETURNING id, cancel_requested",
+        (until, owner, *job_ids),
+    )
+    return {job_id: bool(asked) for job_id, asked in cursor.fetchall()}
+
+
+def _cancel_queued(
+    session: Session, job_id: str, principal: str, now: float, expires: float
+) -> bool:
+    cursor = session.execute(
+        "UPDATE jobs SET status = 'cancelled', finished = ?, expires = ?, owner = '', "
+        "lease_expires = NULL, request = NULL WHERE id = ? AND principal = ? AND "
+        "(status = 'queued' OR (status = 'running' AND "
+        "(lease_expires IS NULL OR lease_expires < ?)))",
+        (now, expires, job_id, principal, now),
+    )
+    return int(cursor.rowcount) == 1
+
+
+def _ask_cancel(session: Session, job_id: str, principal: str) -> None:
+    session.execute(
+        "UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND principal = ? "
+        "AND status = 'running'",
+        (job_id, principal),
+    )
+
+
+def _take_token(session: Session, client: str, rate: float, burst: int, now: float) -> float:
+    least, greatest = session.dialect.least, session.dialect.greatest
+    refilled = f"{least}(?, buckets.tokens + {greatest}(0, ? - buckets.updated) * ?)"
+    args = (float(burst), now, rate)
+    tokens, granted = session.execute(
+        "INSERT INTO buckets (client, tokens, updated, granted) VALUES (?, ?, ?, 1) "
+        "ON CONFLICT (client) DO UPDATE SET "
+        f"tokens = CASE WHEN {refilled} >= 1 THEN {refilled} - 1 ELSE {refilled} END, "
+        f"granted = CASE WHEN {refilled} >= 1 THEN 1 ELSE 0 END, "
+        f"updated = {greatest}(buckets.updated, ?) RETURNING tokens, granted",
+        (client, float(burst) - 1.0, now, *(args * 4), now),
+    ).fetchone()
+    return 0.0 if granted else (1.0 - float(tokens)) / rate
+
+
+def _forget_buckets(session: Session, before: float) -> None:
+    session.execute("DELETE FROM buckets WHERE updated < ?", (before,))
+
+
+def _api_keys(session: Session) -> list[tuple[str, str]]:
+    rows = session.execute("SELECT name, digest FROM api_keys ORDER BY name").fetchall()
+    return [(str(name), str(digest)) for name, digest in rows]
+
+
+def _add_api_key(session: Session, name: str, digest: str, now: float) -> bool:
+    cursor = session.execute(
+        "INSERT INTO api_keys (name, digest, created) VALUES (?, ?, ?) ON CONFLICT DO NOTHING",
+        (name, digest, now),
+    )
+    return int(cursor.rowcount) == 1
+
+
+def _revoke_api_key(session: Session, name: str) -> bool:
+    cursor = session.execute("DELETE FROM api_keys WHERE name = ?", (name,))
+    return int(cursor.rowcount) == 1
+
+
+def request_json(request: Any) -> str:
+    """A request model as the JSON text the store keeps (what another replica runs)."""
+    dump = getattr(request, "model_dump_json", None)
+    return dump() if callable(dump) else json.dumps(request)

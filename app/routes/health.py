@@ -27,12 +27,23 @@ async def healthz() -> Any:
     "/readyz",
     operation_id="readyz",
     response_model=ReadyResponse,
-    responses={503: {"model": ReadyResponse, "description": "Workers are not warm yet."}},
+    responses={
+        503: {
+            "model": ReadyResponse,
+            "description": (
+                "Workers are not warm yet, or the jobs database cannot be reached (`detail` "
+                "names it and says why)."
+            ),
+        }
+    },
 )
 async def readyz(request: Request) -> Any:
     """Ready once every worker has built (compiled, loaded, or on CasADi's virtual machine
-    while its library compiles) the solver for the warm mesh sizes."""
+    while its library compiles) the solver for the warm mesh sizes, and the jobs database
+    (FLEXWING_DATABASE_URL, or the SQLite file) answers: a replica whose database is away is
+    taken out of the load balancer's rotation, not restarted (/healthz stays 200)."""
     pool = request.app.state.pool
+    store = request.app.state.jobs.store
     compiled = [n for n in pool.warm_stations if is_compiled(n)]
     detail = pool.detail
     on_the_vm = [str(n) for n in pool.warm_stations if n not in compiled]
@@ -40,8 +51,13 @@ async def readyz(request: Request) -> Any:
         detail += (
             f"; N = {', '.join(on_the_vm)} on CasADi's virtual machine (no compiled library yet)"
         )
+    if store.available:
+        detail += f"; jobs database {store.name}"
+    elif store.is_open:  # (not open: the app has not started, which "not started" says)
+        detail += f"; jobs database {store.name} unavailable: {store.reason}"
+    ready = pool.ready and store.available
     body = ReadyResponse(
-        ready=pool.ready,
+        ready=ready,
         workers=pool.settings.workers,
         pids=pool.pids(),
         warm_stations=list(pool.warm_stations),
@@ -49,7 +65,7 @@ async def readyz(request: Request) -> Any:
         detail=detail,
         cluster=pool.cluster(),
     )
-    return JSONResponse(body.model_dump(), status_code=200 if pool.ready else 503)
+    return JSONResponse(body.model_dump(), status_code=200 if ready else 503)
 
 
 @router.get("/metrics", include_in_schema=False)

@@ -74,16 +74,29 @@ def _problem(description: str) -> dict[str, Any]:
 
 
 Responses = dict[int | str, dict[str, Any]]
+_UNAVAILABLE: Responses = {
+    503: _problem(
+        "The jobs database cannot be reached just now (/problems/database-unavailable): retry "
+        "after Retry-After."
+    ),
+}
 _NOT_FOUND: Responses = {
     404: _problem(
         "No such job, it has expired, or another API key created it (/problems/not-found)."
     ),
     422: _problem("A job id that is not one (/problems/invalid-input, field `path.job_id`)."),
+    **_UNAVAILABLE,
 }
-_LIST_RESPONSES: Responses = {422: _problem("A bad `limit`, `cursor` or `status`.")}
+_LIST_RESPONSES: Responses = {
+    422: _problem("A bad `limit`, `cursor` or `status`."),
+    **_UNAVAILABLE,
+}
 _CANCEL_RESPONSES: Responses = {
     **_NOT_FOUND,
-    409: _problem("The job runs in another service process (/problems/job-conflict)."),
+    409: _problem(
+        "The job runs on another replica, which did not confirm the cancel in time; it has "
+        "been asked to (/problems/job-conflict)."
+    ),
 }
 _SUBMIT_RESPONSES: Responses = {
     202: {"headers": _LOCATION, "links": _JOB_LINKS},
@@ -92,7 +105,11 @@ _SUBMIT_RESPONSES: Responses = {
         "Invalid body (/problems/invalid-input): `errors` names each bad field from the body's "
         "root (`request.items[3].wing.chord[2]`; `operation` for an unknown operation)."
     ),
-    503: _problem("FLEXWING_MAX_QUEUED_JOBS jobs wait already (/problems/overloaded)."),
+    503: _problem(
+        "FLEXWING_MAX_QUEUED_JOBS jobs wait already (/problems/overloaded), or the jobs "
+        "database cannot be reached just now (/problems/database-unavailable); retry after "
+        "Retry-After."
+    ),
 }
 
 
@@ -163,12 +180,12 @@ def make_router(operations: Mapping[str, JobKind]) -> APIRouter:
         FLEXWING_JOB_RUNNERS at once, each spread over every worker.
         """
         manager = _manager(request)
-        job = manager.submit(
+        job = await manager.submit(
             body.operation,  # type: ignore[attr-defined]
             body.request,  # type: ignore[attr-defined]
             principal=owner,
         )
-        return _accepted(manager, job.row())
+        return _accepted(manager, job)
 
     _add_list_route(router)
     _add_job_routes(router)
@@ -411,8 +428,8 @@ def respond_async(operation: str) -> Callable[..., Awaitable[None]]:
             raise RequestValidationError(errors) from None
         # The owner read here, not as a dependency: every synchronous request passes this
         # dependency, and only these become jobs.
-        job = manager.submit(operation, body, principal=owner_of(request), prefix=None)
-        response = _accepted(manager, job.row())
+        job = await manager.submit(operation, body, principal=owner_of(request), prefix=None)
+        response = _accepted(manager, job)
         response.headers["Preference-Applied"] = "respond-async"
         raise JobAccepted(response)
 

@@ -34,10 +34,11 @@ from dataclasses import dataclass
 from fastapi import FastAPI, Request
 from prometheus_client import CollectorRegistry, Counter
 
+from app.jobs.store import Store
 from app.metrics import ASGIApp, Message, Metrics, Scope
 from app.problems import PROBLEM_TYPES, Problem, ProblemType, problem_response
-from app.security.keys import ApiKey, KeyRing
-from app.security.ratelimit import TokenBuckets, address_bucket, rate_limited
+from app.security.keys import ApiKey, KeyRing, StoredKeys, verify
+from app.security.ratelimit import SharedBuckets, TokenBuckets, address_bucket, rate_limited, take
 from app.settings import Settings
 
 __all__ = [
@@ -152,8 +153,8 @@ class AccessMiddleware:
     def __init__(
         self,
         app: ASGIApp,
-        keys: KeyRing | None,
-        buckets: TokenBuckets | None,
+        keys: KeyRing | StoredKeys | None,
+        buckets: TokenBuckets | SharedBuckets | None,
         metrics: AccessMetrics,
     ) -> None:
         self.app = app
@@ -174,7 +175,12 @@ class AccessMiddleware:
         key = None
         if self.keys is not None:
             presented = _bearer(scope)
-            key = None if presented is None else self.keys.verify(presented)
+            try:
+                key = None if presented is None else await verify(self.keys, presented)
+            except Problem as problem:  # keys in a database not reached yet
+                if not is_public(path):
+                    await problem_response(problem, path)(scope, receive, send)
+                    return
             if key is None and not is_public(path):
                 await self._unauthorized(presented is None, scope, receive, send)
                 return
@@ -182,7 +188,7 @@ class AccessMiddleware:
         scope.setdefault("state", {})[_STATE] = client
         self.metrics.requests.labels(client.label).inc()
         if self.buckets is not None and path not in UNLIMITED_PATHS:
-            wait = self.buckets.take(client.bucket)
+            wait = await take(self.buckets, client.bucket)
             if wait > 0.0:
                 self.metrics.refusals.labels(client.label, "rate-limited").inc()
                 await problem_response(rate_limited(wait, self.buckets), path)(scope, receive, send)
@@ -218,13 +224,25 @@ class AccessMiddleware:
 # ------------------------------------------------------------------------ installation
 
 
-def install_access(app: FastAPI, settings: Settings, metrics: Metrics) -> None:
-    """API keys (FLEXWING_API_KEYS_FILE; an unreadable or malformed file stops the start) and
-    rate limits (FLEXWING_RATE_LIMIT, FLEXWING_RATE_BURST). Add it inside the metrics."""
-    keys = None if settings.api_keys_file is None else KeyRing(settings.api_keys_file)
-    buckets = None
+def install_access(
+    app: FastAPI, settings: Settings, metrics: Metrics, store: Store | None = None
+) -> None:
+    """API keys (FLEXWING_API_KEYS_FILE, an unreadable or malformed file stops the start; or
+    FLEXWING_API_KEYS_IN_DATABASE, the keys of `store`) and rate limits (FLEXWING_RATE_LIMIT,
+    FLEXWING_RATE_BURST; in `store` when replicas share it). Add it inside the metrics."""
+    keys: KeyRing | StoredKeys | None = None
+    if settings.api_keys_file is not None:
+        keys = KeyRing(settings.api_keys_file)
+    elif settings.api_keys_in_database:
+        if store is None:
+            raise ValueError("FLEXWING_API_KEYS_IN_DATABASE needs the service's store")
+        keys = StoredKeys(store)
+    buckets: TokenBuckets | SharedBuckets | None = None
     if settings.client_rate_limit > 0:
-        buckets = TokenBuckets(settings.client_rate_limit, settings.rate_burst)
+        if store is not None and store.shared:
+            buckets = SharedBuckets(store, settings.client_rate_limit, settings.rate_burst)
+        else:
+            buckets = TokenBuckets(settings.client_rate_limit, settings.rate_burst)
     app.state.keys = keys
     app.add_middleware(
         AccessMiddleware, keys=keys, buckets=buckets, metrics=AccessMetrics(metrics.registry)

@@ -34,7 +34,7 @@ def document(schema: dict[str, Any], settings: Settings) -> None:
             "(FLEXWING_API_KEYS_FILE)."
         ),
     }
-    keyed = settings.api_keys_file is not None
+    keyed = settings.keys_on
     schema["security"] = [{SECURITY_SCHEME: []}] if keyed else [{SECURITY_SCHEME: []}, {}]
     unauthorized = _problem(
         "No API key or a wrong one (/problems/key-missing, /problems/key-invalid).",

@@ -15,6 +15,14 @@ a key from its digest is a 2^256 preimage search with or without salt and stretc
 precomputed table covers 2^256 inputs. A slow hash would only cost every request tens of
 milliseconds of CPU (a lever for denial of service) where SHA-256 costs about a microsecond.
 
+With many replicas the keys may live in the jobs database instead (FLEXWING_API_KEYS_IN_DATABASE,
+the `api_keys` table of FLEXWING_DATABASE_URL's PostgreSQL): the same digests, created and
+revoked with ``--database URL`` in place of ``--file FILE`` (``import`` copies a key file's
+digests there), seen by every replica within a second (`StoredKeys`).
+
+    python -m app.keys create --database postgresql://flexwing@db/flexwing --name alice
+    python -m app.keys import --file keys.txt --database postgresql://flexwing@db/flexwing
+
 Checking a key hashes what was presented and compares the digest with every stored one by
 `hmac.compare_digest`, without stopping at a match: the time taken does not depend on which key,
 if any, matched. The key ring re-reads its file when it changes (checked at most once a second),
@@ -24,6 +32,7 @@ so keys are added and revoked without a restart.
 from __future__ import annotations
 
 import argparse
+import asyncio
 import hashlib
 import hmac
 import logging
@@ -33,21 +42,29 @@ import secrets
 import sys
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar
+
+from app.jobs.store import Store
+from app.problems import Problem
 
 __all__ = [
     "ApiKey",
     "KeyFileError",
     "KeyRing",
+    "StoredKeys",
     "add_key",
     "digest",
     "main",
     "new_key",
     "read_key_file",
     "revoke_key",
+    "verify",
 ]
+
+T = TypeVar("T")
 
 log = logging.getLogger(__name__)
 
@@ -209,12 +226,111 @@ class KeyRing:
     def verify(self, presented: bytes) -> ApiKey | None:
         """The key whose digest is that of `presented`, or None: in the same time whichever."""
         self._refresh()
-        wanted = digest(presented)
-        found = None
-        for key in self._keys:
-            if hmac.compare_digest(wanted, key.digest):
-                found = key
-        return found
+        return _match(self._keys, presented)
+
+
+def _match(keys: Sequence[ApiKey], presented: bytes) -> ApiKey | None:
+    """The key whose digest is that of `presented`, compared with every key (no early exit)."""
+    wanted = digest(presented)
+    found = None
+    for key in keys:
+        if hmac.compare_digest(wanted, key.digest):
+            found = key
+    return found
+
+
+class StoredKeys:
+    """The keys of the store's `api_keys` table, re-read at most every `recheck` seconds (by
+    the request that finds them older). While the store cannot be reached the keys read before
+    stay in force; before any were read, a request is 503 database-unavailable, not 401."""
+
+    def __init__(
+        self, store: Store, *, recheck: float = 1.0, clock: Callable[[], float] = time.monotonic
+    ) -> None:
+        self.store = store
+        self.recheck = recheck
+        self._clock = clock
+        self._keys: tuple[ApiKey, ...] | None = None
+        self._checked = -float("inf")
+
+    def __len__(self) -> int:
+        return len(self._keys or ())
+
+    async def _refresh(self) -> tuple[ApiKey, ...]:
+        now = self._clock()
+        if self._keys is not None and now - self._checked < self.recheck:
+            return self._keys
+        self._checked = now
+        try:
+            rows = await self.store.api_keys()
+        except Problem:
+            if self._keys is None:
+                raise
+            return self._keys  # the store is away: the keys read before
+        keys = tuple(ApiKey(name, bytes.fromhex(hexdigest)) for name, hexdigest in rows)
+        if keys != self._keys and self._keys is not None:
+            log.warning("API keys: %d keys read from %s", len(keys), self.store.name)
+        self._keys = keys
+        return keys
+
+    async def verify(self, presented: bytes) -> ApiKey | None:
+        """As `KeyRing.verify`."""
+        return _match(await self._refresh(), presented)
+
+
+async def verify(keys: KeyRing | StoredKeys, presented: bytes) -> ApiKey | None:
+    """The key of `presented` from either source of keys, or None."""
+    if isinstance(keys, StoredKeys):
+        return await keys.verify(presented)
+    return keys.verify(presented)
+
+
+# ------------------------------------------------------------------------ keys in a database
+
+
+def _store_of(database: str) -> Store:
+    """A PostgreSQL URL, or the path of an SQLite jobs database."""
+    if database.startswith(("postgresql://", "postgres://")):
+        return Store.of(database, Path())
+    return Store.of(None, Path(database))
+
+
+def _in_store(database: str, work: Callable[[Store], Awaitable[T]]) -> T:
+    async def run() -> T:
+        store = _store_of(database)
+        await store.open()
+        try:
+            if not store.available:
+                raise KeyFileError(f"cannot reach {store.name}: {store.reason}")
+            return await work(store)
+        finally:
+            await store.close()
+
+    return asyncio.run(run())
+
+
+def add_stored_key(database: str, name: str) -> str:
+    """As `add_key`, the digest kept in the database's api_keys table."""
+    if not re.fullmatch(_NAME, name):
+        raise KeyFileError(
+            f"a key name is 1-64 letters, digits, '_', '.', '@' or '-' (not first): {name!r}"
+        )
+    key = new_key()
+    hexdigest = digest(key).hex()
+    if not _in_store(database, lambda store: store.add_api_key(name, hexdigest, time.time())):
+        raise KeyFileError(f"the database has a key named {name!r} already (revoke it first)")
+    return key
+
+
+def import_key_file(path: Path, database: str) -> int:
+    """Copy the digests of a key file into the database; how many were new there."""
+    keys = read_key_file(path)
+
+    async def copy(store: Store) -> int:
+        added = [await store.add_api_key(k.name, k.digest.hex(), time.time()) for k in keys]
+        return sum(added)
+
+    return _in_store(database, copy)
 
 
 # ------------------------------------------------------------------------------- the CLI
@@ -229,28 +345,57 @@ def main(argv: Sequence[str] | None = None) -> int:
     create = commands.add_parser("create", help="create a key: printed once, its digest stored")
     listing = commands.add_parser("list", help="names and fingerprints (the metrics' labels)")
     revoke = commands.add_parser("revoke", help="remove a key by name")
+    copy = commands.add_parser("import", help="copy a key file's digests into a database")
     for command in (create, listing, revoke):
-        command.add_argument("--file", type=Path, required=True, help="the key file")
+        source = command.add_mutually_exclusive_group(required=True)
+        source.add_argument("--file", type=Path, help="the key file")
+        source.add_argument(
+            "--database", help="a PostgreSQL URL (or an SQLite jobs database) holding the keys"
+        )
+    copy.add_argument("--file", type=Path, required=True, help="the key file to copy")
+    copy.add_argument("--database", required=True, help="the PostgreSQL URL to copy it to")
     for command in (create, revoke):
         command.add_argument("--name", required=True, help="whose key (unique in the file)")
     args = parser.parse_args(argv)
+    where = args.file if args.database is None else redacted_source(args.database)
     try:
-        if args.command == "create":
-            print(add_key(args.file, args.name))
+        if args.command == "import":
+            added = import_key_file(args.file, args.database)
+            print(f"{added} keys added to {where}", file=sys.stderr)
+        elif args.command == "create":
+            if args.database is None:
+                print(add_key(args.file, args.name))
+            else:
+                print(add_stored_key(args.database, args.name))
             print(
-                f"(the key of {args.name!r}: shown once, only its digest is in {args.file})",
+                f"(the key of {args.name!r}: shown once, only its digest is in {where})",
                 file=sys.stderr,
             )
         elif args.command == "list":
-            for key in read_key_file(args.file):
-                print(f"{key.name}\t{key.fingerprint}")
-        elif not revoke_key(args.file, args.name):
-            print(f"{args.file} has no key named {args.name!r}", file=sys.stderr)
-            return 1
+            if args.database is None:
+                listed = [(key.name, key.fingerprint) for key in read_key_file(args.file)]
+            else:
+                rows = _in_store(args.database, lambda store: store.api_keys())
+                listed = [(name, hexdigest[:FINGERPRINT_LENGTH]) for name, hexdigest in rows]
+            for name, fingerprint in listed:
+                print(f"{name}\t{fingerprint}")
+        else:
+            if args.database is None:
+                revoked = revoke_key(args.file, args.name)
+            else:
+                revoked = _in_store(args.database, lambda store: store.revoke_api_key(args.name))
+            if not revoked:
+                print(f"{where} has no key named {args.name!r}", file=sys.stderr)
+                return 1
     except (OSError, KeyFileError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
     return 0
+
+
+def redacted_source(database: str) -> str:
+    """A database as the CLI names it: without the password of a URL."""
+    return _store_of(database).name
 
 
 if __name__ == "__main__":

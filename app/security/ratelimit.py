@@ -7,21 +7,30 @@ second for as long as it likes; beyond that it gets 429 /problems/rate-limited w
 fairness between clients; the pool's admission (503 /problems/overloaded, FLEXWING_MAX_PENDING)
 still protects the service as a whole, and the two are told apart by status and type.
 
-Buckets live in memory, per service process. At most `max_clients` are kept, the least recently
-used dropped first (a dropped client starts again with a full bucket, as a new one would).
+With the SQLite store (one machine) buckets live in memory, per service process
+(`TokenBuckets`): at most `max_clients` are kept, the least recently used dropped first (a
+dropped client starts again with a full bucket, as a new one would). With PostgreSQL
+(FLEXWING_DATABASE_URL) they are rows of the shared store (`SharedBuckets`, one atomic upsert a
+request), so a client's limit holds across replicas instead of being multiplied by their
+count; while the database cannot be reached, each replica's own buckets stand in, so requests
+are still limited (per replica) and never refused for the database's sake.
 """
 
 from __future__ import annotations
 
 import ipaddress
+import logging
 import math
 import time
 from collections import OrderedDict
 from collections.abc import Callable
 
+from app.jobs.store import Store
 from app.problems import PROBLEM_TYPES, Problem, ProblemType
 
-__all__ = ["TokenBuckets", "address_bucket", "rate_limited"]
+__all__ = ["SharedBuckets", "TokenBuckets", "address_bucket", "rate_limited", "take"]
+
+log = logging.getLogger(__name__)
 
 PROBLEM_TYPES["rate-limited"] = ProblemType(
     "rate-limited",
@@ -75,6 +84,42 @@ class TokenBuckets:
         return wait
 
 
+class SharedBuckets:
+    """Token buckets in the shared store (`Store.take_token`, its clock the replicas'), with
+    this process's own `TokenBuckets` standing in while the store cannot be reached."""
+
+    def __init__(
+        self, store: Store, rate: float, burst: int, *, clock: Callable[[], float] = time.time
+    ) -> None:
+        self.store = store
+        self.local = TokenBuckets(rate, burst, clock=clock)
+        self.rate, self.burst = self.local.rate, self.local.burst
+        self._clock = clock
+        self._alone = False  # the local buckets stand in (logged once per outage)
+
+    async def take(self, client: str) -> float:
+        """As `TokenBuckets.take`, across every replica."""
+        if self.store.coordination.available:
+            try:
+                wait = await self.store.take_token(client, self.rate, self.burst, self._clock())
+            except Problem:
+                pass  # the database went away in the meantime
+            else:
+                self._alone = False
+                return wait
+        if not self._alone:
+            self._alone = True
+            log.warning("rate limits: the store is unavailable, this replica's own buckets count")
+        return self.local.take(client)
+
+
+async def take(buckets: TokenBuckets | SharedBuckets, client: str) -> float:
+    """One request of `client` from either kind of buckets: 0.0, or [s] to wait."""
+    if isinstance(buckets, SharedBuckets):
+        return await buckets.take(client)
+    return buckets.take(client)
+
+
 def address_bucket(host: str | None) -> str:
     """The bucket of a client address: an IPv4 address, or an IPv6 address's /64 (one host
     usually has a whole /64 to pick addresses from)."""
@@ -91,7 +136,7 @@ def address_bucket(host: str | None) -> str:
     return f"address:{address}"
 
 
-def rate_limited(wait: float, buckets: TokenBuckets) -> Problem:
+def rate_limited(wait: float, buckets: TokenBuckets | SharedBuckets) -> Problem:
     """The 429 problem for a client that must wait `wait` [s]; Retry-After in whole seconds."""
     retry_after = max(1, math.ceil(wait))
     return Problem(

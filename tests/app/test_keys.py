@@ -13,7 +13,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from app.security.keys import KeyRing, add_key
+import pytest
+
+from app.security.keys import KeyRing, add_key, main
 from tests.app.conftest import ROOT
 
 
@@ -58,3 +60,37 @@ def test_a_revoked_key_is_refused_without_a_restart(tmp_path: Path) -> None:
     assert ring.verify(bob.encode()) is not None
     carol = add_key(keys, "carol")
     assert ring.verify(carol.encode()) is not None
+
+
+def test_keys_are_created_listed_revoked_and_imported_in_a_database(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`--database` in place of `--file` (here an SQLite jobs database; a PostgreSQL URL the
+    same way): the key printed once, its digest kept in the api_keys table; `import` copies a
+    key file's digests there, once. In process (`main`), but for one run of the command."""
+    database = str(tmp_path / "jobs.sqlite3")
+
+    def cli(*args: str) -> tuple[int, str, str]:
+        code = main(list(args))
+        out, err = capsys.readouterr()
+        return code, out, err
+
+    created = _cli("create", "--database", database, "--name", "alice")
+    assert created.returncode == 0, created.stderr
+    alice = created.stdout.strip()
+    assert alice.startswith("fw_") and database in created.stderr
+    fingerprint = hashlib.sha256(alice.encode()).hexdigest()[:8]
+    assert cli("list", "--database", database) == (0, f"alice\t{fingerprint}\n", "")
+    code, out, err = cli("create", "--database", database, "--name", "alice")
+    assert (code, out) == (1, "") and "already" in err
+    keys = tmp_path / "keys.txt"
+    bob = add_key(keys, "bob")
+    assert cli("import", "--file", str(keys), "--database", database)[::2] == (
+        0,
+        f"1 keys added to {database}\n",
+    )
+    assert "0 keys added" in cli("import", "--file", str(keys), "--database", database)[2]
+    assert cli("revoke", "--database", database, "--name", "alice")[0] == 0
+    assert cli("revoke", "--database", database, "--name", "alice")[0] == 1
+    bob_fingerprint = hashlib.sha256(bob.encode()).hexdigest()[:8]
+    assert cli("list", "--database", database)[1] == f"bob\t{bob_fingerprint}\n"

@@ -63,6 +63,7 @@ class Context:
         self.lanes = lanes
         self.parallelism = 1
         self.chunk_seconds = 0.05
+        self.answered: set[int] = set()
         self.service = SimpleNamespace(
             answer=self._answer, task=lambda request: request, run_each=self._run_each
         )
@@ -404,6 +405,15 @@ def test_a_batch_answers_every_item_once_with_at_most_lanes_in_flight(lanes: int
     assert sorted(index for index, _, _ in context.recorded) == list(range(len(items)))
     assert all(not ok for _, ok, _ in context.recorded)
     assert context.most_in_flight == lanes
+
+
+def test_a_batch_taken_up_from_a_stopped_replica_asks_only_the_items_not_answered() -> None:
+    items = [STUDY_SOLVE] * 6
+    request = BatchRequest.model_validate({"items": items})
+    context = Context(_no_equilibrium, lanes=2)
+    context.answered = {0, 3, 4}
+    assert _run(JOB_KINDS["batch"].run(context, request)) is None  # type: ignore[arg-type]
+    assert sorted(index for index, _, _ in context.recorded) == [1, 2, 5]
 
 
 # ---------------------------------------------------------------------------- patiently

@@ -7,20 +7,20 @@
   each ended by a newline, until the job ends; `result_items`: the lines in request order.
 
 The manager is a minimal stand-in: the operations registry, the live job (or none), a wait for
-its change, and a store whose reads run the real queries (`app.jobs.store`) on an in-memory
-SQLite database."""
+its change, a pause between polls, and a store of lists (its queries are tests/app/jobs/
+test_store.py's). A job that is not live here (another replica runs it) is read from the store
+at each poll."""
 
 from __future__ import annotations
 
 import asyncio
 import json
-import sqlite3
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator
 from typing import Any
 
 import pytest
 
-from app.jobs import store, streams
+from app.jobs import streams
 from app.jobs.operations import JOB_KINDS
 from app.jobs.views import job_view
 
@@ -42,15 +42,26 @@ FINISHED: dict[str, Any] = {
 }
 
 
-class MemoryStore:
-    """`JobStore.read` on an in-memory database (the real schema and queries)."""
+class ListStore:
+    """The store's reads that streams make, on lists: `rows` are what successive reads of the
+    job find (the last one again once they run out)."""
 
     def __init__(self) -> None:
-        self.connection = sqlite3.connect(":memory:")
-        store._create_schema(self.connection)
+        self.items: list[tuple[int, int, str]] = []  # (index, seq, line)
+        self.rows: list[dict[str, Any]] = [FINISHED]
+        self.reads = 0
 
-    async def read(self, operation: Callable[..., Any], *args: Any) -> Any:
-        return operation(self.connection, *args)
+    async def get_job(self, job_id: str, with_result: bool = False) -> dict[str, Any]:
+        self.reads += 1
+        return self.rows.pop(0) if len(self.rows) > 1 else self.rows[0]
+
+    async def items_by_answer(self, job_id: str, after: int, limit: int) -> list[Any]:
+        found = sorted((seq, line) for _, seq, line in self.items if seq > after)
+        return found[:limit]
+
+    async def items_by_index(self, job_id: str, after: int, limit: int) -> list[Any]:
+        found = sorted((index, line) for index, _, line in self.items if index > after)
+        return found[:limit]
 
 
 class LiveStandIn:
@@ -68,8 +79,10 @@ class Manager:
 
     def __init__(self, live: LiveStandIn | None = None, changes: list[Any] | None = None) -> None:
         self.operations = JOB_KINDS
-        self.store = MemoryStore()
+        self.store = ListStore()
         self.stopping = False
+        self.poll_interval = 0.5
+        self.pauses: list[Any] = []  # what happens at each poll
         self._live = live
         self._changes = list(changes or [])
         self.waits = 0
@@ -86,8 +99,13 @@ class Manager:
         change(self)
         return True
 
+    async def pause(self, seconds: float) -> bool:
+        if self.pauses:
+            self.pauses.pop(0)(self)
+        return not self.stopping
+
     def answer(self, index: int, seq: int, line: str) -> None:
-        store.insert_item(self.store.connection, "job-1", index, seq, True, line)
+        self.store.items.append((index, seq, line))
 
 
 async def _collect(stream: AsyncIterator[str]) -> list[str]:
@@ -215,3 +233,47 @@ def test_a_long_batch_streams_past_one_chunk_of_reads(monkeypatch: pytest.Monkey
     assert [json.loads(chunk)["index"] for chunk in chunks] == [0, 1, 2, 3, 4]
     in_order = asyncio.run(_collect(streams.result_items(manager, "job-1")))  # type: ignore[arg-type]
     assert len(in_order) == 5
+
+
+# ------------------------------------------------------- a job another replica runs
+
+
+def test_a_job_another_replica_runs_streams_its_progress_read_from_the_store() -> None:
+    running = FINISHED | {"status": "running", "finished": None, "expires": None, "done": 1}
+    manager = Manager()
+    manager.store.rows = [running, running, running | {"done": 2}, FINISHED]
+    text = "".join(asyncio.run(_collect(streams.events(manager, "job-1", running))))  # type: ignore[arg-type]
+    views = [json.loads(e["data"]) for e in _events(text)[1:]]
+    assert [(v["status"], v["progress"]["done"]) for v in views] == [
+        ("running", 1),
+        ("running", 2),
+        ("succeeded", 3),
+    ]
+    assert manager.store.reads == 4  # one read per poll, an unchanged one sends nothing
+
+
+def test_a_batch_another_replica_runs_streams_its_items_until_it_ends() -> None:
+    running = FINISHED | {"status": "running", "finished": None}
+    manager = Manager()
+    manager.store.rows = [running, running, FINISHED]
+    manager.answer(0, 1, '{"index": 0}')
+
+    def answer_another(manager: Manager) -> None:
+        manager.answer(1, 2, '{"index": 1}')
+
+    manager.pauses = [answer_another]
+    chunks = asyncio.run(_collect(streams.item_lines(manager, "job-1")))  # type: ignore[arg-type]
+    assert chunks == ['{"index": 0}\n', '{"index": 1}\n']
+
+
+def test_a_stopping_replica_ends_the_streams_of_jobs_it_polls() -> None:
+    running = FINISHED | {"status": "running", "finished": None}
+    manager = Manager()
+    manager.store.rows = [running]
+
+    def stop(manager: Manager) -> None:
+        manager.stopping = True
+
+    manager.pauses = [stop]
+    chunks = asyncio.run(_collect(streams.item_lines(manager, "job-1")))  # type: ignore[arg-type]
+    assert chunks == []

@@ -35,7 +35,7 @@ import pytest
 from fastapi.routing import APIRoute
 from starlette.routing import BaseRoute, Mount, Route
 
-from app.jobs.store import JobStore, list_jobs, new_job_id
+from app.jobs.store import Store, new_job_id
 from app.main import create_app
 from app.security.keys import add_key, digest
 from app.settings import Settings
@@ -387,11 +387,11 @@ def test_jobs_from_before_keys_are_kept_and_belong_to_no_key(tmp_path: Path) -> 
         connection.executescript(OLD_JOBS_TABLE)
 
     async def listed() -> tuple[list[str], list[str]]:
-        jobs = JobStore(database)
+        jobs = Store.of(None, database)
         await jobs.open()  # adds the column
         try:
-            anyone = await jobs.read(list_jobs, 10, None, None, 0.0, "")
-            a_key = await jobs.read(list_jobs, 10, None, None, 0.0, digest("fw_x").hex())
+            anyone = await jobs.list_jobs(10, None, None, 0.0, "")
+            a_key = await jobs.list_jobs(10, None, None, 0.0, digest("fw_x").hex())
         finally:
             await jobs.close()
         return [row["id"] for row in anyone], [row["id"] for row in a_key]

@@ -1,25 +1,33 @@
 """app.security.keys: keys of 256 random bits, stored only as SHA-256 digests in a key file of
 one `<name> sha256:<hex>` line per key; a key ring that knows each key, refuses every other
 string, follows its file without a restart (looking at it once per `recheck` at most) and keeps
-the keys it had when the file breaks. The command line: tests/app/test_keys.py."""
+the keys it had when the file breaks; keys kept in the store instead (`StoredKeys`, on both
+backends) seen by every replica within a `recheck`. The command line: tests/app/test_keys.py."""
 
 from __future__ import annotations
 
+import asyncio
 import base64
 import hashlib
 from pathlib import Path
 
 import pytest
 
+from app.jobs.store import Store
+from app.problems import Problem
 from app.security.keys import (
+    ApiKey,
     KeyFileError,
     KeyRing,
+    StoredKeys,
     add_key,
     digest,
     new_key,
     read_key_file,
     revoke_key,
 )
+from tests.app.jobs.conftest import Backend
+from tests.postgres import free_port
 
 
 def test_a_new_key_is_256_random_bits_behind_its_prefix() -> None:
@@ -127,3 +135,61 @@ def test_the_key_ring_looks_at_its_file_once_per_recheck_at_most(tmp_path: Path)
     clock.now += 0.25
     assert ring.verify(alice.encode()) is None  # a second on: the revocation is seen
     assert len(ring) == 0
+
+
+# ------------------------------------------------------------------ keys in the database
+
+
+def test_keys_in_the_database_are_seen_and_revoked_within_the_recheck(database: Backend) -> None:
+    """Keys another replica (or the command line) adds or revokes in the store are seen a
+    `recheck` later, not before; a key never added is refused."""
+    clock = Clock()
+
+    async def scenario() -> None:
+        store = database.store()
+        await store.open()
+        try:
+            alice = new_key()
+            assert await store.add_api_key("alice", digest(alice).hex(), 0.0)
+            keys = StoredKeys(store, recheck=1.0, clock=clock)
+            found = await keys.verify(alice.encode())
+            assert found is not None and found == ApiKey("alice", digest(alice))
+            assert await keys.verify(new_key().encode()) is None
+            assert await store.revoke_api_key("alice")
+            clock.now += 0.75
+            assert await keys.verify(alice.encode()) is not None  # not looked at yet
+            clock.now += 0.25
+            assert await keys.verify(alice.encode()) is None
+            assert len(keys) == 0
+        finally:
+            await store.close()
+
+    asyncio.run(scenario())
+
+
+def test_keys_in_an_unreachable_database_are_503_until_read_then_kept(tmp_path: Path) -> None:
+    """Before the keys were ever read, a request is 503 database-unavailable (not 401: its key
+    may well be valid); once read, they stay in force while the store is away."""
+    clock = Clock()
+
+    async def scenario() -> None:
+        url = f"postgresql://flexwing@127.0.0.1:{free_port()}/flexwing"
+        away = Store.of(url, tmp_path)
+        await away.open()
+        try:
+            with pytest.raises(Problem) as refused:
+                await StoredKeys(away, clock=clock).verify(b"fw_anything")
+            assert refused.value.type.slug == "database-unavailable"
+        finally:
+            await away.close()
+        store = Store.of(None, tmp_path / "jobs.sqlite3")
+        await store.open()
+        alice = new_key()
+        await store.add_api_key("alice", digest(alice).hex(), 0.0)
+        keys = StoredKeys(store, clock=clock)
+        assert await keys.verify(alice.encode()) is not None
+        await store.close()  # the store goes away
+        clock.now += 10.0
+        assert await keys.verify(alice.encode()) is not None
+
+    asyncio.run(scenario())

@@ -1,12 +1,20 @@
 """Token buckets (`app.security.ratelimit`), on a clock the test advances: a client may send its
 burst at once and its rate for ever, never more; clients do not share buckets (an IPv6 /64 is one
-client). tests/app/security/test_access.py tests the limit over HTTP."""
+client); with PostgreSQL, buckets live in the store and one client's limit holds across
+replicas (on both backends, `database`), each replica's own buckets standing in while the store
+is away. tests/app/security/test_access.py tests the limit over HTTP."""
 
 from __future__ import annotations
 
+import asyncio
+from pathlib import Path
+
 import pytest
 
-from app.security.ratelimit import TokenBuckets, address_bucket, rate_limited
+from app.jobs.store import Store
+from app.security.ratelimit import SharedBuckets, TokenBuckets, address_bucket, rate_limited
+from tests.app.jobs.conftest import Backend
+from tests.postgres import free_port
 
 
 class Clock:
@@ -91,3 +99,58 @@ def test_retry_after_is_the_wait_rounded_up_to_whole_seconds(wait: float, retry_
     assert problem.status == 429
     assert problem.headers["Retry-After"] == retry_after
     assert problem.extensions == {"rate_limit": 1.0, "burst": 1}
+
+
+# ------------------------------------------------------------- buckets shared by replicas
+
+
+def _shared(
+    stores: list[Store], clock: Clock, rate: float = 2.0, burst: int = 3
+) -> list[SharedBuckets]:
+    return [SharedBuckets(store, rate, burst, clock=clock) for store in stores]
+
+
+def test_buckets_in_the_store_hold_one_limit_across_replicas(database: Backend) -> None:
+    """Two replicas' buckets, one client: its burst between them, not each (the limit is not
+    multiplied by the replica count), then its rate; another client is not affected."""
+    clock = Clock()
+
+    async def scenario() -> None:
+        stores = [database.store(), database.store()]
+        for store in stores:
+            await store.open()
+        try:
+            a, b = _shared(stores, clock)
+            waits = [await replica.take("key:alice") for replica in (a, b, a, b)]
+            assert waits[:3] == [0.0, 0.0, 0.0] and waits[3] == pytest.approx(0.5)
+            assert await a.take("key:bob") == 0.0
+            clock.now += 0.5
+            assert await b.take("key:alice") == 0.0
+            assert await a.take("key:alice") == pytest.approx(0.5)
+            assert len(a.local) == len(b.local) == 0  # the store counted every one
+        finally:
+            for store in stores:
+                await store.close()
+
+    asyncio.run(scenario())
+
+
+def test_while_the_store_is_away_each_replica_limits_with_its_own_buckets() -> None:
+    """A database that cannot be reached (nothing listens on its port): requests are still
+    limited, per replica, and never refused for the database's sake."""
+    clock = Clock()
+    url = f"postgresql://flexwing@127.0.0.1:{free_port()}/flexwing"
+
+    async def scenario() -> None:
+        store = Store.of(url, Path())
+        await store.open()
+        try:
+            assert not store.available
+            (alone,) = _shared([store], clock)
+            waits = [await alone.take("key:alice") for _ in range(4)]
+            assert waits[:3] == [0.0, 0.0, 0.0] and waits[3] == pytest.approx(0.5)
+            assert len(alone.local) == 1
+        finally:
+            await store.close()
+
+    asyncio.run(scenario())
