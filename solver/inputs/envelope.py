@@ -173,7 +173,7 @@ class FlightEnvelope:
                 fields.number(name, value, spec)
             elif spec.form == "choice" and value not in spec.choices:
                 raise InvalidInput(name, "must be one of " + ", ".join(spec.choices))
-            elif spec.form == "deformation":
+            elif spec.form == "values":
                 values = tuple(fields.stations(name, value, None, spec).tolist())
                 for i, item in enumerate(values):
                     if item in values[:i]:

@@ -139,6 +139,9 @@ class FlightCondition:
 
     # The fields that give the airspeed: a flight over airspeeds leaves them out.
     AIRSPEEDS: ClassVar[tuple[str, ...]] = ("velocity", "equivalent_airspeed")
+    # Fields of which one at most is given, whatever the way (the air: its density, or the
+    # altitude whose ISA density it is).
+    ALTERNATIVES: ClassVar[tuple[tuple[str, ...], ...]] = (AIRSPEEDS, ("density", "altitude"))
 
     # The ways a condition is given: each names the fields it takes beside the airspeed and the
     # air (velocity or equivalent_airspeed, density or altitude).

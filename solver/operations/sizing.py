@@ -93,6 +93,15 @@ class LoadsInput:
         form="nested",
         given=FlightEnvelope,
         default=None,
+        example={
+            "weights": [300.0],
+            "altitudes": [0.0],
+            "category": "normal",
+            "cl_max": 1.2,
+            "cl_min": -0.6,
+            "cruise_speed": 12.0,
+            "dive_speed": 16.0,
+        },
     )
     stations: tuple[int, ...] | None = parameter(
         "-",

@@ -10,8 +10,10 @@ Nothing here names an operation, an option or a wing part: the factors of a case
 - the wing's optional parts: every field of the wing with a default, absent or at its declared
   example (an optional field without an example is a declaration to complete, and fails here),
   always present where the operation's row says it `requires` it;
-- the flight: each way of giving it the flight condition declares (`WAYS`: at an alpha, trimmed
-  to a lift, or to a weight and load factor), with the declared examples.
+- the flight, wherever the input declares it (its own, a design problem's, each load case's):
+  each way of giving it the flight condition declares (`WAYS`: at an alpha, trimmed to a lift,
+  or to a weight and load factor), and each of its alternatives (`ALTERNATIVES`: a true or an
+  equivalent airspeed, a density or an altitude), with the declared examples.
 
 The cases are a covering array of all pairs of factor values (each value of each factor meets
 each value of every other factor in some case), greedy and deterministic, plus the case with
@@ -70,6 +72,9 @@ def small_wing() -> dict[str, Any]:
 
 
 Factor = tuple[str, list[Any]]  # (dotted path in the request body, its values; None: absent)
+# Optional inputs with required fields, absent or at their example: their own options are moot
+# (and left out of the body) where they are absent.
+_WHOLE_OR_ABSENT: set[str] = set()
 
 
 def _default(field: dataclasses.Field[Any]) -> Any:
@@ -96,6 +101,7 @@ def _option_factors(cls: type, prefix: str) -> Iterator[Factor]:
             if default is None and not _required_fields(spec.given):
                 yield path, [None, {}]  # an optional input, absent or at its defaults
             elif default is None and spec.example is not None:
+                _WHOLE_OR_ABSENT.add(path)
                 yield path, [None, spec.example]
             yield from _option_factors(spec.given, path if spec.flatten else path + ".")
         elif spec.form == "choice":
@@ -124,34 +130,69 @@ def _wing_factors(requires: tuple[str, ...]) -> Iterator[Factor]:
         yield path, [spec.example] if path in requires else [None, spec.example]
 
 
-def _flight_factor(cls: type, without: tuple[str, ...]) -> Factor:
-    """Each way of giving a flight condition, with its declared examples."""
+def _flight_values(cls: type, without: tuple[str, ...]) -> list[dict[str, Any]]:
+    """Each way of giving a flight condition (`WAYS`) with its declared examples, and each
+    member of each group of alternatives (`ALTERNATIVES`: its airspeed true or equivalent, its
+    air by density or altitude) in turn: the k-th value takes the k-th way and the k-th member
+    of each group (cyclically), so every way and every member is met."""
     declared = fields.specs(cls)
+    ways: list[tuple[str, ...]] = list(cls.WAYS.values())  # type: ignore[attr-defined]
+    groups = [
+        tuple(name for name in group if name not in without)
+        for group in getattr(cls, "ALTERNATIVES", ())
+    ]
+    groups = [group for group in groups if group]
+    special = {n for way in ways for n in way} | {n for group in groups for n in group}
     base = {
         name: spec.example
         for name, spec in declared.items()
-        if name not in without
-        and name not in {n for way in cls.WAYS.values() for n in way}  # type: ignore[attr-defined]
-        and spec.example is not None
+        if name not in without and name not in special and spec.example is not None
     }
-    ways = [
-        base | {name: declared[name].example for name in names}
-        for names in cls.WAYS.values()  # type: ignore[attr-defined]
-    ]
-    return "flight", ways
+    values = []
+    for k in range(max([len(ways), *(len(group) for group in groups)])):
+        value = dict(base)
+        for name in ways[k % len(ways)]:
+            value[name] = declared[name].example
+        for group in groups:
+            name = group[k % len(group)]
+            value[name] = declared[name].example
+        values.append(value)
+    return values
+
+
+def _flight_factor(cls: type) -> Factor:
+    """Where `cls` (an operation's input) is told its flight, and how: a field given in ways
+    (`WAYS`), within a flattened input (a design problem's), or within each item of a list (a
+    load case's, the list then one item with its other required fields at their examples)."""
+    for name, spec in fields.specs(cls).items():
+        given = spec.given
+        if given is None:
+            continue
+        if hasattr(given, "WAYS"):
+            return name, _flight_values(given, spec.without)
+        if spec.flatten or spec.form == "items":
+            found = _flight_factor(given)
+            if found is None:
+                continue
+            inner, values = found
+            if spec.flatten:
+                return inner, values
+            required = {
+                n: s.example
+                for n, s in fields.specs(given).items()
+                if n in _required_fields(given) and n != inner
+            }
+            return name, [[required | {inner: value}] for value in values]
+    return None  # type: ignore[return-value]
 
 
 def factors(operation: solver.Operation) -> list[Factor]:
     """The factors of `operation`'s cases."""
-    flight_spec = fields.specs(operation.input).get("flight")
     found = list(_option_factors(operation.input, ""))
-    if flight_spec is not None and flight_spec.given is not None:
-        found.append(_flight_factor(flight_spec.given, flight_spec.without))
-    else:  # a design problem flies as its own flight condition declares
-        problem = next(s for s in fields.specs(operation.input).values() if s.flatten)
-        condition = fields.specs(problem.given)["flight"]  # type: ignore[arg-type]
-        found.append(_flight_factor(condition.given, condition.without))  # type: ignore[arg-type]
-    return found + list(_wing_factors(operation.requires))
+    flight = _flight_factor(operation.input)
+    if flight is None:
+        raise AssertionError(f"{operation.name}'s input declares no flight given in ways")
+    return [*found, flight, *_wing_factors(operation.requires)]
 
 
 def _covering(domains: list[int], strength: int) -> list[tuple[int, ...]]:
@@ -201,8 +242,9 @@ def _body(operation: solver.Operation, settings: dict[str, Any]) -> dict[str, An
     body: dict[str, Any] = {"wing": wing}
     if "velocities" in fields.specs(operation.input):
         body["velocities"] = list(_AIRSPEEDS)
+    absent = {path for path, value in settings.items() if value is None}
     for path, value in settings.items():
-        if value is None:
+        if value is None or any(path.startswith(p + ".") for p in absent & _WHOLE_OR_ABSENT):
             continue
         for replaced in _REPLACES.get(path.removeprefix("wing."), ()):
             wing.pop(replaced, None)
@@ -214,19 +256,39 @@ def _body(operation: solver.Operation, settings: dict[str, Any]) -> dict[str, An
             node[leaf] = value
         else:
             node.update(value)
-    if "velocities" not in body and "velocity" not in body.get("flight", {}):
-        body["flight"]["velocity"] = _AIRSPEEDS[-1]
+    if "velocities" not in body:
+        for flight in _flights(body):
+            if not set(solver.FlightCondition.AIRSPEEDS) & set(flight):
+                flight["velocity"] = _AIRSPEEDS[-1]
     return body
+
+
+def _flights(body: dict[str, Any]) -> list[dict[str, Any]]:
+    """The flights of a case's body: its own, or its items' (load cases)."""
+    found = [body["flight"]] if isinstance(body.get("flight"), dict) else []
+    for value in body.values():
+        if isinstance(value, list):
+            found += [
+                item["flight"] for item in value if isinstance(item, dict) and "flight" in item
+            ]
+    return found
 
 
 def _id(settings: dict[str, Any]) -> str:
     shown = []
+    absent = {path for path, value in settings.items() if value is None} & _WHOLE_OR_ABSENT
     for path, value in settings.items():
-        if value is None or value is False:
+        if value is None or value is False or any(path.startswith(p + ".") for p in absent):
             continue
         name = path.rsplit(".", 1)[-1]
-        if path == "flight":
-            name = "+".join(k for k in ("alpha", "lift", "weight") if k in value)
+        if isinstance(value, list) and value and isinstance(value[0], dict):
+            value = value[0].get("flight", value[0])
+        if isinstance(value, dict) and {"alpha", "lift", "weight"} & set(value):
+            name = "+".join(
+                k
+                for k in ("alpha", "lift", "weight", "equivalent_airspeed", "altitude")
+                if k in value
+            )
         elif not isinstance(value, bool):
             name = f"{name}={value}" if isinstance(value, str | int) else name
         shown.append(name)

@@ -76,5 +76,6 @@ def test_the_matrix_reaches_every_operation_and_mostly_answers() -> None:
     ran = sum(_OUTCOMES.values())
     if ran < len(CASES):  # the cases ran in another process, or were deselected
         pytest.skip("the matrix's cases did not all run in this process")
-    # Measured: 73 of 90 answered, 17 refused with a type (invalid input naming the field).
+    # Measured: 94 of 115 answered, 3 domain answers, 18 refused with a type (invalid input
+    # naming the field).
     assert _OUTCOMES["answered"] + _OUTCOMES["domain"] >= 0.7 * ran, dict(_OUTCOMES)

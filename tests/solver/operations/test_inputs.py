@@ -220,6 +220,7 @@ def test_the_registry_names_each_input_type() -> None:
         "flutter": solver.FlutterInput,
         "roll": solver.RollInput,
         "controls": solver.ControlsInput,
+        "loads": solver.LoadsInput,
     } == solver.OPERATIONS
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import typing
+from functools import cached_property
 
 import pytest
 
@@ -44,7 +45,18 @@ def test_a_rows_text_and_budget_are_what_the_service_reads(operation: solver.Ope
 
 @pytest.mark.parametrize("operation", [op for op in ROWS if op.parts], ids=lambda op: op.name)
 def test_a_rows_parts_are_its_inputs_to_count(operation: solver.Operation) -> None:
-    """Progress counts the input's `parts` attribute (a sweep's airspeeds): it exists as a
-    property of the input."""
+    """Progress counts the input's `parts` attribute (a sweep's airspeeds, a loads question's
+    case count): it exists as a property of the input."""
     assert operation.parts is not None
-    assert isinstance(getattr(operation.input, operation.parts), property)
+    assert isinstance(getattr(operation.input, operation.parts), property | cached_property)
+
+
+@pytest.mark.parametrize("operation", [op for op in ROWS if op.spread], ids=lambda op: op.name)
+def test_a_spread_rows_input_plans_its_parts_and_assembles_its_result(
+    operation: solver.Operation,
+) -> None:
+    """What the service runs apart: `plan` (a property), each part an input that `run`s, and
+    `assemble` returning the row's result type from their answers."""
+    assert isinstance(operation.input.plan, property | cached_property)  # type: ignore[attr-defined]
+    assemble = typing.get_type_hints(operation.input.assemble)  # type: ignore[attr-defined]
+    assert assemble["return"] is operation.result
