@@ -517,6 +517,7 @@ def _model(cls: type, way: str | None, without: tuple[str, ...]) -> type[Request
         for field in dataclasses.fields(cls)  # type: ignore[arg-type]
         if isinstance(spec := field.metadata.get("input"), solver.Spec)
         and spec.form in _PER_STATION_FORMS
+        and not (spec.form == "items" and getattr(spec.given, "__name__", "") in ITEM_LIMITS)
     )
     model.__flat_types__ = flat_types
     _models[key] = model

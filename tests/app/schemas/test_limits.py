@@ -106,3 +106,18 @@ def test_a_guessed_deformation_is_a_state_of_the_lattice_the_options_ask_for(k: 
     assert state[layout.heave][-1] == pytest.approx(0.029)
     assert np.all(state[layout.twist] == 0.5)
     assert np.all(state[layout.circulation] == 0.0)
+
+
+@pytest.mark.parametrize("count", [151, 500], ids=["past-the-stations-limit", "at-the-limit"])
+def test_load_cases_are_held_to_their_own_limit_not_the_stations(count: int) -> None:
+    """A list of load cases is not per station: FLEXWING_MAX_LOAD_CASES (500) bounds it, not
+    FLEXWING_MAX_STATIONS (150)."""
+    cases = [
+        {"name": f"case {i}", "flight": {"velocity": 12.0, "weight": 300.0}} for i in range(count)
+    ]
+    body = {"wing": study.wing_json(), "cases": cases}
+    task = task_of(schemas.REQUESTS["loads"].model_validate(body), Settings())
+    assert task.case_count == count
+    with pytest.raises(Problem) as refused:
+        task_of(schemas.REQUESTS["loads"].model_validate(body), Settings(max_load_cases=150))
+    assert refused.value.extensions["errors"][0]["field"] == "cases"
