@@ -26,6 +26,8 @@ import httpx
 import pytest
 
 import solver
+from app.schemas.examples import LOADS_EXAMPLES
+from app.schemas.requests import REQUESTS
 from solver.numerics.compiled import cache_dir
 from tests import study
 from tests.app.conftest import ROOT, Server
@@ -172,6 +174,21 @@ def test_solve_and_sweep_on_dask_give_the_studys_numbers(dask_service: Server) -
         swept = client.post("/sweep", json=body).json()
     assert [p["status"] for p in swept["points"]] == ["equilibrium"] * 2 + ["no_equilibrium"]
     assert 21.43 < swept["divergence"]["fold"]["velocity"] < 21.45
+
+
+def test_load_cases_spread_over_dask_workers_answer_as_in_process(dask_service: Server) -> None:
+    """/loads's cases run as Dask tasks, chunk by chunk, the envelope assembled in one: the
+    same cases' loads as solved here (Newton's 1e-10 residual bounds the difference)."""
+    body = LOADS_EXAMPLES["envelope"]["value"]
+    with dask_service.client() as client:
+        response = client.post("/loads", json=body)
+    assert response.status_code == 200, response.text
+    answer = response.json()
+    expected = REQUESTS["loads"].model_validate(body).to_solver().run()
+    assert [c["status"] for c in answer["cases"]] == [c.status for c in expected.cases]
+    assert answer["envelope"]["max_bending_moment"] == pytest.approx(
+        expected.envelope.max_bending_moment.tolist(), rel=1e-8
+    )
 
 
 def _speed(index: int) -> float:
