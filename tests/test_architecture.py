@@ -64,6 +64,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["dynamics.pk", "dynamics.linearisation"],
     ["dynamics.onset"],
     ["dynamics.flutter"],
+    ["controls.antisymmetric", "controls.hinge_moments"],
     ["controls.roll"],
     ["controls.effectiveness"],
     ["sizing.regulations", "sizing.gusts"],

@@ -35,11 +35,9 @@ from typing import Literal
 
 import numpy as np
 
-from solver.controls.roll import (
-    hinge_moments,
-    operating_point,
-    without_aileron_deflections,
-)
+from solver.controls.antisymmetric import without_aileron_deflections
+from solver.controls.hinge_moments import hinge_moments
+from solver.controls.roll import operating_point
 from solver.errors import (
     ConvergenceError,
     InvalidInput,

@@ -35,12 +35,18 @@ from typing import Literal
 
 import numpy as np
 
+from solver.controls.antisymmetric import (
+    aileron_direction,
+    antisymmetric_system,
+    is_antisymmetric,
+    without_aileron_deflections,
+)
+from solver.controls.hinge_moments import hinge_pairs
 from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, numerical_failures_as
-from solver.inputs.control_surfaces import strip_weights
 from solver.inputs.flight import FlightCondition, OperatingPoint
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
-from solver.model.geometry import DEG, chordwise_nodes
+from solver.model.geometry import DEG
 from solver.numerics.evaluation import Evaluation
 from solver.numerics.newton import newton
 from solver.numerics.path import PathSettings, follow
@@ -61,57 +67,9 @@ from solver.statics.solve import solve
 from solver.statics.system import CoupledSystem, Flow
 from solver.statics.validity import roll_findings
 
-__all__ = [
-    "antisymmetric_system",
-    "operating_point",
-    "hinge_moments",
-    "is_antisymmetric",
-    "roll",
-    "without_aileron_deflections",
-]
+__all__ = ["operating_point", "roll"]
 
 Method = Literal["auto", "antisymmetric", "linearised"]
-
-
-# --------------------------------------------------------------------------- the two models
-
-
-def is_antisymmetric(wing: Wing, alpha: float, chordwise: int) -> bool:
-    """Whether the wing's aileron response at `alpha` [deg] is exactly antisymmetric: alpha 0,
-    no dihedral (the left half is then the right one turned about x), no camber at the chordwise
-    nodes (airfoil and flaps), no jig twist."""
-    if alpha != 0.0 or wing.dihedral != 0.0:
-        return False
-    jig_twist = wing.jig_twist
-    if jig_twist is not None and np.any(jig_twist != 0.0):
-        return False
-    return not np.any(wing.camber_at(chordwise_nodes(chordwise)) != 0.0)
-
-
-def without_aileron_deflections(wing: Wing) -> Wing:
-    """The wing with its ailerons neutral: the symmetric base the linearisation starts from."""
-    surfaces = tuple(
-        s if s.symmetric else dataclasses.replace(s, deflection=0.0) for s in wing.control_surfaces
-    )
-    return dataclasses.replace(wing, control_surfaces=surfaces)
-
-
-def _aileron_direction(wing: Wing) -> tuple[float, ...]:
-    """The ailerons' deflections [rad] as the flow's control weights (flaps 0): the
-    linearised disturbance of all of them at once."""
-    return tuple(0.0 if s.symmetric else math.radians(s.deflection) for s in wing.control_surfaces)
-
-
-def antisymmetric_system(
-    wing: Wing,
-    options: SolverOptions,
-    roll_rate: float = 0.0,
-    control: tuple[float, ...] | None = None,
-) -> CoupledSystem:
-    """The exactly antisymmetric model of `wing` at alpha 0 (image rotated about x), at a roll
-    rate p / V [rad/m], with control direction `control` (`solver.statics.system.Flow`)."""
-    flow = Flow(image=-1.0, image_jacobian=-1.0, roll_rate=roll_rate, control=control)
-    return CoupledSystem.of(wing, 0.0, options, flow)
 
 
 # ------------------------------------------------------------------------------ the answer
@@ -324,7 +282,7 @@ def _exact(
         lift=0.0,
         symmetric_parts=(zero_stations, zero_panels),
         antisymmetric_parts=(stations, panels),
-        hinge=_hinge_pairs(wing, loads, None),
+        hinge=hinge_pairs(wing, loads, None),
         stability=stability,
         info=SolveInfo(iterations, norm, False, time.perf_counter() - started),
     )
@@ -403,7 +361,7 @@ def _linearised(
     base_wing = without_aileron_deflections(wing)
     symmetric = solve(base_wing, flight, options=options)
     q = flight.dynamic_pressure
-    flow = Flow(image=1.0, image_jacobian=-1.0, control=_aileron_direction(wing))
+    flow = Flow(image=1.0, image_jacobian=-1.0, control=aileron_direction(wing))
     system = CoupledSystem.of(base_wing, flight.alpha, options, flow)
     x_s = symmetric.state
     evaluation, _, terms = system.evaluate_with_controls(x_s)
@@ -450,7 +408,7 @@ def _linearised(
             ),
         ),
         antisymmetric_parts=antisymmetric,
-        hinge=_hinge_pairs(wing, symmetric_loads, antisymmetric_loads),
+        hinge=hinge_pairs(wing, symmetric_loads, antisymmetric_loads),
         stability=stability,
         info=SolveInfo(
             symmetric.solver.iterations,
@@ -497,19 +455,6 @@ def _linear_loads(
         terms.center_along + terms.center_control,
         terms.quarter_chord_along,
         terms.leading_edge_along,
-    )
-
-
-def _shifted(loads: PanelLoads, change: PanelLoads, sign: float) -> PanelLoads:
-    """loads + sign * change: a wing's loads and geometry, linearised (both with leading
-    edges)."""
-    assert loads.leading_edge is not None and change.leading_edge is not None
-    return PanelLoads(
-        loads.force + sign * change.force,
-        loads.torque + sign * change.torque,
-        loads.center + sign * change.center,
-        loads.quarter_chord + sign * change.quarter_chord,
-        loads.leading_edge + sign * change.leading_edge,
     )
 
 
@@ -561,63 +506,6 @@ def _antisymmetric_parts(
         rigid_lift_per_span=q * strip(rigid_change.force[2], k) / widths,
     )
     return stations, strips
-
-
-# ------------------------------------------------------------------------- hinge moments
-
-
-def hinge_moments(wing: Wing, loads: PanelLoads, k: int) -> np.ndarray:
-    """(surfaces,) [N m] the right half's hinge moment of each surface: the moment of the
-    forces of the panels whose force points lie aft of the hinge line about that line, on the
-    strips the surface covers (each weighted by the share of its span covered), trailing edge
-    down positive. The hinge line of a strip runs between its stations' hinge points, at the
-    hinge's fraction of the chord along each deformed chord line."""
-    if loads.leading_edge is None:
-        raise ValueError("hinge moments need the flow model's panel loads (leading edges)")
-    chord_axis = (loads.quarter_chord - loads.leading_edge) / (0.25 * wing.chord)
-    moments = np.zeros(len(wing.control_surfaces))
-    for index, surface in enumerate(wing.control_surfaces):
-        hinge = loads.leading_edge + surface.hinge * wing.chord * chord_axis  # (3, N)
-        covered = strip_weights(surface, wing.y)
-        total = 0.0
-        for strip in np.flatnonzero(covered):
-            a, b = hinge[:, strip], hinge[:, strip + 1]
-            axis = (b - a) / np.linalg.norm(b - a)
-            middle = (a + b) / 2
-            chord_direction = (chord_axis[:, strip] + chord_axis[:, strip + 1]) / 2
-            for panel in range(strip * k, strip * k + k):
-                arm = loads.center[:, panel] - middle
-                if arm @ chord_direction <= 0:
-                    continue  # ahead of the hinge line: the fixed part of the section
-                total += covered[strip] * float(np.cross(arm, loads.force[:, panel]) @ axis)
-        moments[index] = total
-    return moments
-
-
-# The fraction of the linearised change at which its hinge moments are central-differenced:
-# the moment is bilinear in the loads and the geometry but for the hinge axis's normalisation,
-# so the difference's error is ~1e-6 of that term's second order, far below the linearisation's.
-_HINGE_STEP = 1e-3
-
-
-def _hinge_pairs(wing: Wing, base: PanelLoads, change: PanelLoads | None) -> list[HingeMoment]:
-    """Each surface's hinge moments on both wings. Exact method (`change` None): `base` is
-    the right wing's loads and the left's are their rotated image (its hinge moment the
-    negative). Linearised: `base` the symmetric equilibrium's and `change` the antisymmetric
-    disturbance's: both wings' moments, linear in it."""
-    k = base.force.shape[1] // (wing.n_stations - 1)
-    on_base = hinge_moments(wing, base, k)
-    if change is None:
-        on_right, on_left = on_base, -on_base
-    else:
-        ahead = hinge_moments(wing, _shifted(base, change, _HINGE_STEP), k)
-        behind = hinge_moments(wing, _shifted(base, change, -_HINGE_STEP), k)
-        linear = (ahead - behind) / (2 * _HINGE_STEP)
-        on_right, on_left = on_base + linear, on_base - linear
-    return [
-        HingeMoment(surface.name, float(r), float(left))
-        for surface, r, left in zip(wing.control_surfaces, on_right, on_left, strict=True)
-    ]
 
 
 # -------------------------------------------------------------------------- assembling

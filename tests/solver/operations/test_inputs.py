@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import solver
-from solver.controls.roll import without_aileron_deflections
+from solver.controls.antisymmetric import without_aileron_deflections
 from tests import study
 
 SAME = 1e-12  # relative, see the module docstring
