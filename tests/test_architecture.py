@@ -64,7 +64,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["dynamics.pk", "dynamics.linearisation"],
     ["dynamics.onset"],
     ["dynamics.flutter"],
-    ["controls.antisymmetric", "controls.hinge_moments"],
+    ["controls.antisymmetric", "controls.hinge_moments", "controls.superposition"],
     ["controls.roll"],
     ["controls.effectiveness"],
     ["sizing.regulations", "sizing.gusts"],

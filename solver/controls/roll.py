@@ -42,6 +42,7 @@ from solver.controls.antisymmetric import (
     without_aileron_deflections,
 )
 from solver.controls.hinge_moments import hinge_pairs
+from solver.controls.superposition import roll_response, scaled_panels, scaled_stations
 from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, numerical_failures_as
 from solver.inputs.flight import FlightCondition, OperatingPoint
 from solver.inputs.options import SolverOptions
@@ -51,8 +52,8 @@ from solver.numerics.evaluation import Evaluation
 from solver.numerics.newton import newton
 from solver.numerics.path import PathSettings, follow
 from solver.numerics.stability import beam_response, divergence_pressure
-from solver.results.controls import HingeMoment, RollResponse, RollStability
-from solver.results.equilibrium import Equilibrium, Panels, SolveInfo, Stations
+from solver.results.controls import RollResponse, RollStability
+from solver.results.equilibrium import Panels, SolveInfo, Stations
 from solver.statics.branch import pressure_scale
 from solver.statics.jig import at_rest, jig
 from solver.statics.loads import (
@@ -65,7 +66,6 @@ from solver.statics.loads import (
 )
 from solver.statics.solve import solve
 from solver.statics.system import CoupledSystem, Flow
-from solver.statics.validity import roll_findings
 
 __all__ = ["operating_point", "roll"]
 
@@ -264,11 +264,11 @@ def _exact(
         system, x, q, rigid, unloaded=True, safety_factor=options.safety_factor
     )
     loads = panel_loads(system, x, q)
-    zero_stations = _scaled_stations(stations, 0.0)
-    zero_panels = _scaled_panels(panels, 0.0)
+    zero_stations = scaled_stations(stations, 0.0)
+    zero_panels = scaled_panels(panels, 0.0)
     moment = q * system.residual_with_roll(x)[2]
     rigid_moment = q * system.residual_with_roll(rigid_state)[2]
-    return _response(
+    return roll_response(
         wing,
         flight,
         options,
@@ -389,7 +389,7 @@ def _linearised(
         system, x_s, dx, antisymmetric_loads, rigid_antisymmetric, q, symmetric.panels
     )
     symmetric_loads = flow_panel_loads(system, x_s, q)  # with the leading edges
-    return _response(
+    return roll_response(
         wing,
         flight,
         options,
@@ -506,120 +506,3 @@ def _antisymmetric_parts(
         rigid_lift_per_span=q * strip(rigid_change.force[2], k) / widths,
     )
     return stations, strips
-
-
-# -------------------------------------------------------------------------- assembling
-
-
-def _scaled_stations(stations: Stations, factor: float) -> Stations:
-    return dataclasses.replace(
-        stations,
-        heave=factor * stations.heave,
-        slope=factor * stations.slope,
-        twist=factor * stations.twist,
-        axis_twist=factor * stations.axis_twist,
-        shear=factor * stations.shear,
-        bending_moment=factor * stations.bending_moment,
-        torque=factor * stations.torque,
-        bending_stress=None,
-        shear_stress=None,
-        von_mises_stress=None,
-    )
-
-
-def _scaled_panels(panels: Panels, factor: float) -> Panels:
-    return dataclasses.replace(
-        panels,
-        lift=factor * panels.lift,
-        lift_per_span=factor * panels.lift_per_span,
-        torque=factor * panels.torque,
-        rigid_lift_per_span=factor * panels.rigid_lift_per_span,
-    )
-
-
-def _combined(
-    wing: Wing,
-    symmetric: tuple[Stations, Panels],
-    antisymmetric: tuple[Stations, Panels],
-    sign: float,
-) -> tuple[Stations, Panels]:
-    """One wing: the symmetric part plus `sign` times the antisymmetric part (the right wing
-    +1, the left wing -1, in its mirrored frame); its spar's stresses when it has one."""
-    s, a = symmetric[0], antisymmetric[0]
-    stations = Stations(
-        y=wing.y,
-        heave=s.heave + sign * a.heave,
-        slope=s.slope + sign * a.slope,
-        twist=s.twist + sign * a.twist,
-        axis_twist=s.axis_twist + sign * a.axis_twist,
-        shear=s.shear + sign * a.shear,
-        bending_moment=s.bending_moment + sign * a.bending_moment,
-        torque=s.torque + sign * a.torque,
-        bending_stiffness=wing.bending_stiffness,
-        torsional_stiffness=wing.torsional_stiffness,
-    )
-    if wing.spar is not None:
-        stress = wing.spar.stresses(stations.bending_moment, stations.torque)
-        stations = dataclasses.replace(
-            stations,
-            bending_stress=stress.bending,
-            shear_stress=stress.shear,
-            von_mises_stress=stress.von_mises,
-        )
-    sp, ap = symmetric[1], antisymmetric[1]
-    panels = Panels(
-        y=ap.y if not np.any(sp.lift) else sp.y,
-        lift=sp.lift + sign * ap.lift,
-        lift_per_span=sp.lift_per_span + sign * ap.lift_per_span,
-        torque=sp.torque + sign * ap.torque,
-        rigid_lift_per_span=sp.rigid_lift_per_span + sign * ap.rigid_lift_per_span,
-    )
-    return stations, panels
-
-
-def _response(
-    wing: Wing,
-    flight: OperatingPoint,
-    options: SolverOptions,
-    *,
-    method: Literal["antisymmetric", "linearised"],
-    antisymmetric_state: np.ndarray,
-    symmetric: Equilibrium | None,
-    rate: float,
-    free: bool,
-    moment: float,
-    rigid_moment: float,
-    lift: float,
-    symmetric_parts: tuple[Stations, Panels],
-    antisymmetric_parts: tuple[Stations, Panels],
-    hinge: list[HingeMoment],
-    stability: RollStability,
-    info: SolveInfo,
-) -> RollResponse:
-    right, right_panels = _combined(wing, symmetric_parts, antisymmetric_parts, 1.0)
-    left, left_panels = _combined(wing, symmetric_parts, antisymmetric_parts, -1.0)
-    q = flight.dynamic_pressure
-    span = 2 * wing.semispan
-    response = RollResponse(
-        wing=wing,
-        flight=flight,
-        options=options,
-        antisymmetric_state=antisymmetric_state,
-        symmetric=symmetric,
-        method=method,
-        roll_rate=rate * flight.velocity,
-        helix_angle=rate * wing.semispan,
-        free_roll=free,
-        rolling_moment=moment,
-        rolling_moment_coefficient=moment / (q * wing.planform_area * span),
-        rigid_rolling_moment=rigid_moment,
-        lift=lift,
-        right=right,
-        left=left,
-        right_panels=right_panels,
-        left_panels=left_panels,
-        hinge_moments=hinge,
-        stability=stability,
-        solver=info,
-    )
-    return dataclasses.replace(response, validity=roll_findings(response, options.validity))
