@@ -5,7 +5,8 @@ margins under the envelope), with the V-n diagrams the cases came from.
 
 Loads are the section loads the structure carries (`solver.results.equilibrium.Stations`: the
 lift's less the wing's own mass's under the load factor), at the N stations, root to tip; a
-rolling case's are its more loaded wing's at each station (both are reported).
+rolling case's `shear`, `bending_moment` and `torque` are its right wing's, `left_*` its left
+wing's, and the envelope takes both.
 """
 
 from __future__ import annotations

@@ -118,7 +118,12 @@ def _wait(client: httpx.Client, location: str, until: Callable[[dict[str, Any]],
         response = client.get(location)
         if response.status_code == 200 and until(response.json()):
             return response.json()
-        assert response.status_code in (200, 429), response.text
+        # 503 database-unavailable is the documented answer while the database (re)starts:
+        # the job is polled again until the deadline, as a client honouring Retry-After does.
+        unavailable = response.status_code == 503 and (
+            response.json().get("type") == "/problems/database-unavailable"
+        )
+        assert response.status_code in (200, 429) or unavailable, response.text
         assert time.monotonic() < deadline, response.text
         time.sleep(POLL)
 
