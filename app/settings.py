@@ -115,8 +115,8 @@ class Settings(BaseSettings):
         default=10.0,
         gt=0,
         description=(
-            "[s] how long a synchronous request (/solve, /sweep, /optimize, /flutter, /roll, "
-            "/controls) waits for its answer; "
+            "[s] how long a synchronous request to an operation (POST /solve, /sweep, /loads, "
+            "...) waits for its answer; "
             "past it the request becomes a job at once (202 Accepted, Location: /jobs/{id}) "
             "that runs on within its time budget. A client may ask for a longer wait, up to that "
             "budget, with Prefer: wait=<seconds> (RFC 7240)."
