@@ -23,6 +23,7 @@ import "./panels/flutter.js";
 import "./panels/roll.js";
 import "./panels/optimize.js";
 import "./panels/batch.js";
+import "./panels/loads.js";
 import "./panels/shape.js";
 import "./panels/downloads.js";
 
