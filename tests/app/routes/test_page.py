@@ -1124,6 +1124,18 @@ def test_sizing_loads_of_an_envelope_draw_its_v_n_diagrams_and_loads_envelope(
     critical = expected["cases"][envelope["max_bending_moment_case"][0]]["name"]
     assert drawn["marks"]["root_max_bending_moment_case"] == critical
     assert critical in page.inner_text("#vn-verdict")
+    # Hovering the root of the bending moment envelope names the case that gives each extreme.
+    tooltip = page.evaluate(
+        """() => { const chart = Chart.getChart('chart-envelope-moment');
+        const point = chart.getDatasetMeta(0).data[0];
+        chart.tooltip.setActiveElements([{datasetIndex: 0, index: 0}, {datasetIndex: 1, index: 0}],
+          {x: point.x, y: point.y});
+        chart.update();
+        return chart.tooltip.body.flatMap(b => b.lines); }"""
+    )
+    lowest = expected["cases"][envelope["min_bending_moment_case"][0]]["name"]
+    assert tooltip[0].startswith(f"{critical} (largest bending moment"), tooltip
+    assert tooltip[1].startswith(f"{lowest} (smallest bending moment"), tooltip
     for station in expected["correlated"]:
         potato = drawn["series"][f"correlated_{station['station']}"]
         assert potato["x"] == pytest.approx(station["bending_moment"])

@@ -42,7 +42,7 @@ export function drawEnvelope(loads) {
       xTitle: "spanwise position y [m]",
       yTitle: `${load.label} [${load.unit}]`,
       x: { min: 0 },
-      plugins: { tooltip: namedTooltip(""), annotations: { hlines: [{ y: 0 }] } },
+      plugins: { tooltip: namedTooltip("", "x"), annotations: { hlines: [{ y: 0 }] } },
     });
   }
   const potato = [];
@@ -61,7 +61,11 @@ export function drawEnvelope(loads) {
     datasets: potato,
     xTitle: "bending moment M [N·m]",
     yTitle: "torque T [N·m]",
-    plugins: { tooltip: namedTooltip(""), annotations: { hlines: [{ y: 0 }] } },
+    plugins: {
+      tooltip: namedTooltip(""),
+      legend: { labels: { usePointStyle: true, boxHeight: 10, filter: (item) => !item.text.endsWith(": hull") } },
+      annotations: { hlines: [{ y: 0 }], vlines: [{ x: 0, color: COLORS.zero, label: "" }], vlineLabels: false },
+    },
   });
   record("envelope", series, marks, { stations: loads.correlated.map((c) => c.station) });
 }

@@ -7,10 +7,10 @@ import { COLORS, colorOf, draw, line, record } from "./chart.js";
 /** A case's point, hollow when it has no loads. */
 const casePoint = (c) => ({ x: c.equivalent_airspeed, y: c.load_factor, name: c.name, status: c.status });
 
-/** Tooltips that name the case (or the V-n point) under the pointer. */
-export const namedTooltip = (unit) => ({
-  intersect: true,
-  mode: "nearest",
+/** Tooltips that name the case under the pointer (`mode` "x": every point at its station). */
+export const namedTooltip = (unit, mode = "nearest") => ({
+  intersect: mode === "nearest",
+  mode,
   callbacks: {
     label: (context) => {
       const { raw } = context;
@@ -39,7 +39,7 @@ export function drawVn(loads) {
   series.cases = { label: "cases with loads", x: flown.map((p) => p.x), y: flown.map((p) => p.y) };
   series.cases_without_loads = { label: "cases without loads", x: lost.map((p) => p.x), y: lost.map((p) => p.y) };
   const point = { showLine: false, pointRadius: 5, pointHoverRadius: 7, borderWidth: 1.5 };
-  datasets.push(line("cases with loads", flown, COLORS.moment, { ...point, pointStyle: "circle" }));
+  datasets.push(line("cases with loads", flown, "#222", { ...point, pointStyle: "circle", backgroundColor: "rgba(34, 34, 34, 0.35)" }));
   if (lost.length) datasets.push(line("cases without loads", lost, COLORS.beyond, { ...point, pointStyle: "crossRot", pointRadius: 7 }));
   draw("chart-vn", {
     title: loads.vn.length ? "V-n diagrams and the cases flown" : "The cases flown",

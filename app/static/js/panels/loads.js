@@ -156,7 +156,8 @@ const loads = definePanel({
     const table = el("table", { id: "cases-table", className: "stations cases" }, el("caption", { className: "visually-hidden" }, "Load cases: name, airspeed, weight, load factor or lift, aileron and roll rate"), el("thead"), el("tbody"));
     const add = el("button", { type: "button", id: "add-case" }, "Add a case");
     const remove = el("button", { type: "button", id: "remove-case" }, "Remove the last case");
-    fieldset.before(el("div", { className: "table-scroll" }, table), el("p", { className: "row-buttons" }, add, remove));
+    const hint = el("p", { className: "hint", id: "cases-hint" }, "Load cases, each a trimmed flight (a weight times its load factor, or a lift) at its airspeed; an aileron or a roll rate makes it a rolling pull-out. An empty cell is not sent.");
+    fieldset.before(hint, el("div", { className: "table-scroll" }, table), el("p", { className: "row-buttons" }, add, remove));
     cases = new CaseTable(table);
     cases.load(DEFAULT_CASES);
     add.addEventListener("click", () => cases.addCase());
