@@ -1270,7 +1270,11 @@ def test_an_operation_the_page_has_no_panel_for_runs_in_a_generic_one(
         assert sent[0]["flight"]["velocity"] == 12.0
         figure = tab.figure("op-echo")
         assert figure["state"] == "drawn" and figure["over"] == "y"
-        assert figure["series"]["shear"] == {"label": "shear", "x": answer["y"], "y": answer["shear"]}
+        assert figure["series"]["shear"] == {
+            "label": "shear",
+            "x": answer["y"],
+            "y": answer["shear"],
+        }
         assert "totals.peak" in page.inner_text("#op-echo-table")
         assert tab.errors == []
     finally:

@@ -1,7 +1,7 @@
 // Every operation of the running API that no panel of this page runs (a new one, POST /gust,
 // the day it arrives): one panel each, made from the OpenAPI document as the page opens. Its
-// request is the editor's wing, flight and options (those its body takes) with a loaded body's
-// other keys as given (Request JSON); its answer is shown as it comes: a table of its numbers
+// request is the editor's wing, flight, options and airspeeds (those its body takes) with a
+// loaded body's other keys as given (Request JSON); its answer is shown as it comes: a table of its numbers
 // and a line chart of any of its arrays (along the span where they have a `y`). So a new
 // operation runs on the page without page code; a dedicated panel replaces this one for it.
 //
@@ -16,6 +16,7 @@ import { allPanels, definePanel, panelOf } from "../registry.js";
 import { run } from "../run.js";
 import { flightTakes, jobOperations, requestKeys, summaryOf } from "../schema.js";
 import { state } from "../state.js";
+import { airspeeds } from "./sweep.js";
 
 function renderNumbers(id, scalars) {
   const table = $(`${id}-table`);
@@ -53,6 +54,7 @@ function genericPanel(operation) {
     request() {
       const keys = requestKeys(operation);
       const body = editorRequest(operation, { withVelocity: flightTakes(operation, state.flightMode, "velocity") });
+      body.velocities = airspeeds.read(); // a body's airspeeds are the sweep's (editor/load.js)
       return Object.fromEntries(Object.entries(body).filter(([key]) => keys.includes(key)));
     },
     words: () => ({ busy: `${operation}: running`, failed: `${operation}: failed.`, cancelled: `${operation}: cancelled.` }),
