@@ -1162,6 +1162,9 @@ def test_load_cases_typed_in_the_table_are_sent_as_typed(
     page = tab.page
     page.click("#loads-details summary")
     assert page.locator("#cases-table tbody tr").count() == 3  # the page's default cases
+    # Each column says what it takes (the API's description), an empty cell stays empty.
+    assert "load factor" in (page.get_attribute("#case-col-load_factor", "title") or "").lower()
+    assert page.input_value("#case-aileron-0") == ""
     page.click("#add-case")
     page.fill("#case-name-3", "rolling")
     page.fill("#case-aileron-3", "5")

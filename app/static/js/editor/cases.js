@@ -27,6 +27,21 @@ export const DEFAULT_CASES = [
 
 const SHOWN = new Set(CASE_COLUMNS.map((c) => c.key));
 
+/** The columns' descriptions and limits from the running API's schemas (FlightCase, its
+ * flights), without their defaults: an empty cell stays empty, and is not sent. */
+export function caseSchema(schemas) {
+  const sources = [schemas.FlightCase, schemas.FlightAtWeight, schemas.FlightAtLift];
+  const properties = {};
+  for (const { key } of CASE_COLUMNS) {
+    const found = sources.map((schema) => schema?.properties?.[key]).find(Boolean);
+    if (found) {
+      const { default: _, ...described } = found;
+      properties[key] = described;
+    }
+  }
+  return { properties };
+}
+
 export class CaseTable extends RowTable {
   constructor(table) {
     super(table, { columns: CASE_COLUMNS, path: "cases", id: "case" });

@@ -6,7 +6,7 @@
 
 import { downloadText, toCSV } from "../download.js";
 import { $, el, f, plural } from "../dom.js";
-import { CaseTable, DEFAULT_CASES } from "../editor/cases.js";
+import { CaseTable, caseSchema, DEFAULT_CASES } from "../editor/cases.js";
 import { editorRequest } from "../editor/request.js";
 import { drawEnvelope } from "../figures/sizing.js";
 import { clear } from "../figures/chart.js";
@@ -195,6 +195,7 @@ const loads = definePanel({
   mount(schemas) {
     const offered = Boolean(schemas.LoadsRequest);
     showBlock("loads", offered);
+    if (offered) cases.setSchema(caseSchema(schemas));
   },
   /** A loads body (its cases, envelope or stations) into the panel; any other leaves it. */
   load(body) {
