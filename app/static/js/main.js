@@ -23,15 +23,19 @@ import "./panels/flutter.js";
 import "./panels/roll.js";
 import "./panels/optimize.js";
 import "./panels/batch.js";
+import "./panels/loads.js";
+import "./panels/generic.js"; // after every panel: the operations left to it
 import "./panels/shape.js";
 import "./panels/downloads.js";
 
 // What tests (and curious users) can read: window.__flexwing.figures["14.2"].series, the runs in
-// .state.runs, each operation's figures in .operations.
+// .state.runs, each operation's figures in .operations (a generic panel's too, once mounted).
 window.__flexwing = {
   figures: registry,
   state,
-  operations: describe(),
+  get operations() {
+    return describe(); // the generic panels are made once the API's document is read
+  },
   ready: false,
   get totals() {
     return panelOf("solve")?.last?.response.totals ?? null;

@@ -60,3 +60,18 @@ export function defaultAt(operation, path) {
   for (const key of path) nodes = nodes.flatMap(variants).map((v) => v.properties?.[key]).filter(Boolean);
   return nodes.map((n) => n.default ?? resolve(n)?.default).find((d) => d !== undefined);
 }
+
+/** The operations POST /jobs runs (its body's `operation` constants), in the document's order. */
+export function jobOperations() {
+  const submission = document_?.paths?.["/jobs"]?.post?.requestBody?.content?.["application/json"]?.schema;
+  return variants(submission)
+    .map((member) => member.properties?.operation)
+    .map((name) => name?.const ?? (name?.enum?.length === 1 ? name.enum[0] : null))
+    .filter(Boolean);
+}
+
+/** The top-level keys of `operation`'s body (every member's). */
+export const requestKeys = (operation) => [...new Set(variants(requestSchema(operation)).flatMap((v) => Object.keys(v.properties ?? {})))];
+
+/** POST /<operation>'s summary in the document, or null. */
+export const summaryOf = (operation) => document_?.paths?.[`/${operation}`]?.post?.summary ?? null;

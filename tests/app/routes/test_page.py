@@ -610,7 +610,7 @@ def test_a_trimmed_sweep_draws_points_and_its_stability_limit(
     body = tab.swept()
     assert body["operation"] == "sweep"
     flight = body["request"]["flight"]
-    assert flight == {"weight": 300, "load_factor": 1, "density": 1.225}
+    assert flight == {"weight": 300, "density": 1.225}  # no load factor given: none sent
     figure = tab.figure("14.4")
     assert figure["amplification"] == "lift_effectiveness"
     speeds = figure["series"]["amplification"]["x"]
@@ -1069,3 +1069,224 @@ def test_the_study_wing_with_mass_does_not_flutter_in_range_and_says_so(
     assert "beyond the airspeeds analysed" in words
     assert page.get_attribute("#fig-flutter", "data-status") == "no_flutter_in_range"
     assert tab.errors == []
+
+
+def _example(server: Server, path: str, name: str) -> dict[str, Any]:
+    """POST `path`'s example `name` from the live server's OpenAPI document."""
+    document = httpx.get(server.base_url + "/openapi.json").json()
+    content = document["paths"][path]["post"]["requestBody"]["content"]["application/json"]
+    return dict(content["examples"][name]["value"])
+
+
+def test_sizing_loads_of_an_envelope_draw_its_v_n_diagrams_and_loads_envelope(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """The loads panel: the /loads envelope example (two weights of the study's wing, CS-23
+    normal) is sent as pasted; the V-n figure draws the answer's boundaries and every case at
+    its equivalent airspeed and load factor, the envelope figure the answer's extremes along the
+    span with the critical case named, and the potato plot each correlated station's cases and
+    hull; the cases' table has a row per case, and the envelope's CSV its numbers."""
+    body = _example(server, "/loads", "envelope")
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    tab.load_json(json.dumps(body))
+    assert page.is_checked("#f-loads_envelope")
+    assert page.input_value("#f-env_weights") == "250, 300"
+    assert page.locator("#cases-table tbody tr").count() == 0
+    sent = _ran(tab, "loads", "#loads-button")["request"]
+    assert sent["envelope"] == body["envelope"] and "cases" not in sent
+    with server.client() as client:
+        expected = client.post("/loads", json=sent).json()
+    assert expected["info"]["answered"] == len(expected["cases"]) == 20
+
+    vn = tab.figure("vn")
+    assert vn["state"] == "drawn" and vn["marks"]["diagrams"] == len(expected["vn"]) == 2
+    for i, diagram in enumerate(expected["vn"]):
+        assert vn["series"][f"boundary_{i}"]["x"] == pytest.approx(diagram["airspeed"])
+        assert vn["series"][f"boundary_{i}"]["y"] == pytest.approx(diagram["load_factor"])
+        assert vn["points"][i] == diagram["points"]
+    cases = vn["series"]["cases"]
+    assert cases["x"] == pytest.approx([c["equivalent_airspeed"] for c in expected["cases"]])
+    assert cases["y"] == pytest.approx([c["load_factor"] for c in expected["cases"]])
+    rows = page.locator("#vn-table tbody tr")
+    assert rows.count() == 20
+    assert rows.nth(0).get_attribute("data-case") == expected["cases"][0]["name"]
+
+    envelope = expected["envelope"]
+    drawn = tab.figure("envelope")
+    assert drawn["state"] == "drawn" and page.is_visible("#fig-envelope")
+    for key in ("shear", "bending_moment", "torque"):
+        for side in ("max", "min"):
+            series = drawn["series"][f"{side}_{key}"]
+            assert series["x"] == pytest.approx(envelope["y"])
+            assert series["y"] == pytest.approx(envelope[f"{side}_{key}"])
+    critical = expected["cases"][envelope["max_bending_moment_case"][0]]["name"]
+    assert drawn["marks"]["root_max_bending_moment_case"] == critical
+    assert critical in page.inner_text("#vn-verdict")
+    # Hovering the root of the bending moment envelope names the case that gives each extreme.
+    tooltip = page.evaluate(
+        """() => { const chart = Chart.getChart('chart-envelope-moment');
+        const point = chart.getDatasetMeta(0).data[0];
+        chart.tooltip.setActiveElements([{datasetIndex: 0, index: 0}, {datasetIndex: 1, index: 0}],
+          {x: point.x, y: point.y});
+        chart.update();
+        return chart.tooltip.body.flatMap(b => b.lines); }"""
+    )
+    lowest = expected["cases"][envelope["min_bending_moment_case"][0]]["name"]
+    assert tooltip[0].startswith(f"{critical} (largest bending moment"), tooltip
+    assert tooltip[1].startswith(f"{lowest} (smallest bending moment"), tooltip
+    for station in expected["correlated"]:
+        potato = drawn["series"][f"correlated_{station['station']}"]
+        assert potato["x"] == pytest.approx(station["bending_moment"])
+        hull = drawn["series"][f"hull_{station['station']}"]
+        assert len(hull["x"]) == len(station["hull"]) + 1  # closed
+        assert hull["x"][0] == hull["x"][-1]
+    # The envelope as a CSV: a row per station, each extreme with the case that gives it.
+    with page.expect_download() as info:
+        page.click("#download-loads")
+    csv_rows = list(csv.DictReader(Path(info.value.path()).read_text().splitlines()))
+    assert [float(r["y [m]"]) for r in csv_rows] == pytest.approx(envelope["y"])
+    assert csv_rows[0]["max_bending_moment_case"] == critical
+    assert tab.errors == []
+
+
+def test_load_cases_typed_in_the_table_are_sent_as_typed(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """The page's own cases (no envelope): an empty cell is not sent, the answer's cases are the
+    table's rows in order, and a case the wing cannot fly (an aileron on a wing without one) is
+    answered in its place, its status in the table, the others drawn."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    page.click("#loads-details summary")
+    assert page.locator("#cases-table tbody tr").count() == 3  # the page's default cases
+    # Each column says what it takes (the API's description), an empty cell stays empty.
+    assert "load factor" in (page.get_attribute("#case-col-load_factor", "title") or "").lower()
+    assert page.input_value("#case-aileron-0") == ""
+    page.click("#add-case")
+    page.fill("#case-name-3", "rolling")
+    page.fill("#case-aileron-3", "5")
+    sent = _ran(tab, "loads", "#loads-button")["request"]
+    assert "envelope" not in sent and "flight" not in sent
+    assert sent["cases"][0] == {
+        "name": "pull-up",
+        "flight": {"velocity": 12, "weight": 300, "load_factor": 2.5},
+    }
+    assert sent["cases"][1] == {"name": "cruise", "flight": {"velocity": 14, "weight": 300}}
+    assert sent["cases"][3]["aileron"] == 5
+    statuses = page.locator("#vn-table tbody tr")
+    assert [statuses.nth(i).get_attribute("data-case") for i in range(4)] == [
+        "pull-up",
+        "cruise",
+        "push-over",
+        "rolling",
+    ]
+    assert statuses.nth(3).get_attribute("data-status") == "invalid"
+    vn = tab.figure("vn")
+    assert vn["series"]["cases"]["y"] == pytest.approx([2.5, 1.0, -1.0])
+    assert tab.figure("envelope")["state"] == "drawn"
+    assert tab.errors == []
+
+
+def test_the_flutter_panel_chooses_the_aerodynamics_and_says_which_gave_the_answer(
+    visit: Callable[..., Visit],
+) -> None:
+    """Issue 42: a loaded body's options.aerodynamics shows in the flutter panel's choice; the
+    lattice chosen there is sent, and the V-g and V-f diagrams name the model that answered
+    (the answer's aerodynamic_model)."""
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    tab.load_json(json.dumps(_goland()))
+    assert page.input_value("#f-flutter_aerodynamics") == "strip"
+    _ran(tab, "flutter", "#flutter-button")
+    assert tab.figure("flutter")["aerodynamic_model"] == "strip_theory"
+    page.select_option("#f-flutter_aerodynamics", "lattice")
+    sent = _ran(tab, "flutter", "#flutter-button")["request"]
+    assert sent["options"] == {"aerodynamics": "lattice"}
+    figure = tab.figure("flutter")
+    assert figure["aerodynamic_model"] == "quasi_3d_lattice"
+    titles = page.evaluate(
+        "['chart-vg', 'chart-vf'].map(id => Chart.getChart(id).options.plugins.title.text)"
+    )
+    assert all("(quasi-3D lattice)" in title for title in titles), titles
+    assert "lagged strip by strip" in page.inner_text("#flutter-note")
+    assert tab.errors_but(0) == []
+
+
+def test_an_operation_the_page_has_no_panel_for_runs_in_a_generic_one(
+    browser: Browser, server: Server
+) -> None:
+    """A new operation of the API (here `echo`, added to the served document, its job answered
+    by the test) gets a panel of its own: listed with its figure, it sends the editor's wing
+    and flight with a loaded body's other keys, and shows the answer's numbers and its arrays
+    along the span."""
+    document = httpx.get(server.base_url + "/openapi.json").json()
+    body = document["paths"]["/jobs"]["post"]["requestBody"]["content"]["application/json"]
+    solve = next(
+        document["components"]["schemas"][m["$ref"].rsplit("/", 1)[1]]
+        for m in body["schema"]["oneOf"]
+        if m["$ref"].endswith("/SolveJobSubmission")
+    )
+    request_schema = {
+        "type": "object",
+        "properties": {**_properties(document, solve), "gust_length": {"type": "number"}},
+    }
+    document["components"]["schemas"]["EchoJobSubmission"] = {
+        "type": "object",
+        "properties": {"operation": {"const": "echo"}, "request": request_schema},
+    }
+    body["schema"]["oneOf"].append({"$ref": "#/components/schemas/EchoJobSubmission"})
+    document["paths"]["/echo"] = {"post": {"summary": "Echo: a new operation"}}
+    answer = {"y": [0.0, 2.5, 5.0], "shear": [30.0, 10.0, 0.0], "totals": {"peak": 42.0}}
+    sent: list[dict[str, Any]] = []
+
+    def jobs(route: Any) -> None:
+        submitted = route.request.post_data_json if route.request.method == "POST" else {}
+        if submitted.get("operation") == "echo":
+            sent.append(submitted["request"])
+            route.fulfill(json={"id": "echo-1", "status": "succeeded", "result": answer})
+        else:
+            route.continue_()
+
+    context = browser.new_context(viewport=DESKTOP)
+    context.set_default_timeout(TIMEOUT_MS)
+    try:
+        page = context.new_page()
+        tab = Visit(page, server.base_url)
+        page.on("pageerror", lambda error: tab.errors.append(f"page error: {error}"))
+        page.on("console", lambda m: m.type == "error" and tab.errors.append(m.text))
+        page.route("**/openapi.json", lambda route: route.fulfill(json=document))
+        page.route("**/jobs", jobs)
+        page.goto(server.base_url + "/")
+        tab.ready()
+        assert page.evaluate("window.__flexwing.operations")["echo"] == {"figures": ["op-echo"]}
+        assert "Echo: a new operation" in page.inner_text("#op-echo-details summary")
+        loaded = study.solve_request(12.0)
+        tab.load_json(json.dumps({**loaded, "gust_length": 7.5}))
+        page.wait_for_function("() => !window.__flexwing.state.busy")
+        _ran(tab, "echo", "#op-echo-button")
+        assert sent[0]["gust_length"] == 7.5
+        assert sent[0]["wing"]["chord"][0] == loaded["wing"]["chord"][0]
+        assert sent[0]["flight"]["velocity"] == 12.0
+        figure = tab.figure("op-echo")
+        assert figure["state"] == "drawn" and figure["over"] == "y"
+        assert figure["series"]["shear"] == {
+            "label": "shear",
+            "x": answer["y"],
+            "y": answer["shear"],
+        }
+        assert "totals.peak" in page.inner_text("#op-echo-table")
+        assert tab.errors == []
+    finally:
+        context.close()
+
+
+def _properties(document: dict[str, Any], submission: dict[str, Any]) -> dict[str, Any]:
+    """The properties of a job submission's request (its schema followed by $ref)."""
+    request = submission["properties"]["request"]
+    while "$ref" in request:
+        request = document["components"]["schemas"][request["$ref"].rsplit("/", 1)[1]]
+    return dict(request["properties"])

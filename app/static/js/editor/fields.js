@@ -72,10 +72,12 @@ export const STATION_COLUMNS = [
 // `flightMode`: shown and sent only when the flight panel's choice ("Fly at") is that mode: at an
 // angle of attack (FlightAtAlpha), or trimmed to carry a weight (FlightAtWeight) or a lift
 // (FlightAtLift), the angle of attack solved for. A request carries exactly one of alpha,
-// weight (+ load_factor) and lift.
+// weight (+ load_factor) and lift. An `optional` field left empty is not sent: the request
+// carries what the user gave (a loaded flight's own keys), the API's default the rest (a
+// load factor of 1: none given; a flight at an altitude has no density).
 
 export const FLIGHT_FIELDS = [
-  { key: "velocity", path: "flight.velocity", label: "Airspeed", unit: "m/s", value: 10, solveOnly: true },
+  { key: "velocity", path: "flight.velocity", label: "Airspeed", unit: "m/s", value: 10, solveOnly: true, optional: true },
   { key: "alpha", path: "flight.alpha", label: "Angle of attack", unit: "deg", value: 5, flightMode: "alpha" },
   {
     key: "weight",
@@ -85,9 +87,18 @@ export const FLIGHT_FIELDS = [
     value: 300,
     flightMode: "weight",
   },
-  { key: "load_factor", path: "flight.load_factor", label: "Load factor", unit: "-", value: 1, flightMode: "weight" },
+  {
+    key: "load_factor",
+    path: "flight.load_factor",
+    label: "Load factor",
+    unit: "-",
+    value: null,
+    placeholder: "1 (level flight)",
+    flightMode: "weight",
+    optional: true,
+  },
   { key: "lift", path: "flight.lift", label: "Lift of both halves", unit: "N", value: 300, flightMode: "lift" },
-  { key: "density", path: "flight.density", label: "Air density", unit: "kg/m^3", value: 1.225 },
+  { key: "density", path: "flight.density", label: "Air density", unit: "kg/m^3", value: 1.225, placeholder: "1.225 (sea level)", optional: true },
 ];
 
 // A circular tube spar (TubeSpar): EI and GJ follow from it instead of the EI/GJ laws or the

@@ -29,8 +29,11 @@ export function flight(operation, { withVelocity }) {
   for (const field of FLIGHT_FIELDS) {
     if (field.solveOnly && !withVelocity) continue;
     if (field.flightMode && field.flightMode !== state.flightMode) continue;
-    setPath(result, field.path, value(field.key));
+    const v = value(field.key);
+    if (field.optional && v === null) continue; // left empty: not sent (the API's default)
+    setPath(result, field.path, v);
   }
+  result.flight ??= {};
   for (const { field, control } of state.extra) {
     if (field.path?.startsWith("flight.")) {
       const v = controlValue(control, field.kind);
@@ -68,12 +71,15 @@ export function loadFlight(fl) {
   state.keptFlight = {};
   if (!fl) return;
   const mode = ["lift", "weight", "alpha"].find((way) => way in fl);
-  setControl("velocity", fl.velocity);
+  // An equivalent airspeed or an altitude replaces the field it excludes (both: a 422).
+  if (fl.equivalent_airspeed != null && fl.velocity == null) $("f-velocity").value = "";
+  else setControl("velocity", fl.velocity);
   if (mode) {
     for (const field of FLIGHT_FIELDS.filter((f) => f.flightMode === mode)) resetControl(field.key, fl[field.key]);
     setFlightMode(mode);
   }
-  resetControl("density", fl.density);
+  if (fl.altitude != null && fl.density == null) $("f-density").value = "";
+  else resetControl("density", fl.density);
   const shown = new Set(["velocity", "density", ...FLIGHT_FIELDS.filter((f) => f.flightMode === state.flightMode).map((f) => f.key)]);
   state.keptFlight = Object.fromEntries(Object.entries(fl).filter(([key]) => !shown.has(key)));
 }

@@ -3,9 +3,15 @@
 
 import { COLORS, colorOf, draw, fmt, line, points, record, speedAxisEnd } from "./chart.js";
 
+/** The answer's aerodynamic_model, as the diagrams' titles name it. */
+const SHORT = { strip_theory: "strip theory", quasi_3d_lattice: "quasi-3D lattice", unsteady_lattice: "unsteady lattice" };
+
 /** V-g and V-f: every mode's damping ratio and frequency against airspeed, the flutter and
  * divergence speeds marked; and the first modes' shapes (heave, twist) along the span. */
-export function drawFlutter(flutter, { shapes = 3 } = {}) {
+export function drawFlutter(flutter, { shapes = 3, model } = {}) {
+  // Issue 42: each diagram says which aerodynamic model gave it.
+  const short = SHORT[flutter.aerodynamic_model] ?? flutter.aerodynamics;
+  const by = short ? ` (${short})` : "";
   const solved = flutter.points.filter((p) => p.status === "solved" && p.damping);
   const V = solved.map((p) => p.velocity);
   const series = {};
@@ -36,7 +42,7 @@ export function drawFlutter(flutter, { shapes = 3 } = {}) {
   const xmax = speedAxisEnd([...flutter.points.map((p) => p.velocity), ...vlines.map((l) => l.x)]);
   const speed = { min: 0, max: xmax };
   draw("chart-vg", {
-    title: "V-g: a mode flutters where its damping crosses zero",
+    title: `V-g${by}: a mode flutters where its damping crosses zero`,
     datasets: vg,
     xTitle: "airspeed V [m/s]",
     yTitle: "damping ratio [-] (negative: grows)",
@@ -45,7 +51,7 @@ export function drawFlutter(flutter, { shapes = 3 } = {}) {
     plugins: { annotations: { vlines, hlines: [{ y: 0, color: "#555" }] } },
   });
   draw("chart-vf", {
-    title: "V-f: the modes' frequencies coalesce toward flutter",
+    title: `V-f${by}: the modes' frequencies coalesce toward flutter`,
     datasets: vf,
     xTitle: "airspeed V [m/s]",
     yTitle: "frequency ω [rad/s]",
@@ -88,6 +94,6 @@ export function drawFlutter(flutter, { shapes = 3 } = {}) {
       flutter_mode: onset?.mode ?? null,
       divergence_velocity: divergence?.velocity ?? null,
     },
-    { modes: modeCount, mode_frequencies: flutter.modes.map((m) => m.frequency) },
+    { modes: modeCount, mode_frequencies: flutter.modes.map((m) => m.frequency), aerodynamic_model: flutter.aerodynamic_model ?? null, model: model ?? null },
   );
 }

@@ -8,11 +8,44 @@ import { Airspeeds } from "../editor/airspeeds.js";
 import { hasMass } from "../editor/mass.js";
 import { editorRequest } from "../editor/request.js";
 import { drawFlutter } from "../figures/flutter.js";
+import { render, setControl, value } from "../inputs.js";
 import { showProblem } from "../problems.js";
 import { definePanel } from "../registry.js";
 import { run } from "../run.js";
 
 let airspeeds = null;
+
+// options.aerodynamics for flutter alone: empty sends what the options hold (a loaded body's, or
+// none: the API's default, the lattice). Offered as the running API's schema lists them.
+const AERODYNAMICS = {
+  key: "flutter_aerodynamics",
+  label: "Aerodynamics",
+  kind: "select",
+  value: "",
+  options: [
+    ["", "the options' (the lattice by default)"],
+    ["strip", "strip theory (Theodorsen)"],
+    ["lattice", "lattice, lagged strip by strip by C(k)"],
+    ["unsteady_lattice", "unsteady vortex lattice (3D wake)"],
+  ],
+  hint: "Which unsteady aerodynamics give the flutter answer; the figure says which did.",
+};
+
+/** The answer's aerodynamic model (response.aerodynamic_model) in words. */
+export const MODEL_WORDS = {
+  strip_theory: "Theodorsen's strip theory",
+  quasi_3d_lattice: "the lattice's steady 3D circulation lagged strip by strip by C(k) (quasi-3D)",
+  unsteady_lattice: "the unsteady vortex lattice (its 3D wake shed and convected)",
+};
+
+const modelOf = (response) => MODEL_WORDS[response.aerodynamic_model] ?? `${response.aerodynamics} aerodynamics`;
+
+/** The flutter request's options: the editor's, with the panel's aerodynamics when chosen. */
+function withAerodynamics(request) {
+  const chosen = $("f-flutter_aerodynamics").closest(".field").hidden ? "" : value("flutter_aerodynamics");
+  if (!chosen) return request;
+  return { ...request, options: { ...request.options, aerodynamics: chosen } };
+}
 
 function flutterWords(response) {
   const { flutter: onset, no_flutter: none, divergence } = response;
@@ -64,6 +97,7 @@ const flutter = definePanel({
   figures: ["flutter"],
   init() {
     airspeeds = new Airspeeds("flutter", $("flutter"), { start: 2, stop: 21, count: 20 }, { form: "flutter-form" });
+    render([AERODYNAMICS], $("flutter"), { form: "flutter-form" });
     $("flutter-form").addEventListener("submit", (event) => {
       event.preventDefault();
       run(flutter);
@@ -73,13 +107,18 @@ const flutter = definePanel({
   mount(schemas) {
     const offered = Boolean(schemas.Wing?.properties?.mass && schemas.MassModel && schemas.FlutterRequest);
     for (const id of ["flutter", "flutter-actions"]) $(id).hidden = !offered;
+    const models = schemas.SolverOptions?.properties?.aerodynamics?.enum ?? [];
+    const select = $("f-flutter_aerodynamics");
+    for (const option of [...select.options]) option.hidden = option.value !== "" && !models.includes(option.value);
+    select.closest(".field").hidden = models.length === 0;
   },
   /** A wing with its mass (a /flutter body): its airspeeds are flutter's too. */
   load(body) {
     if (body.wing?.mass) airspeeds.load(body.velocities);
+    if (body.wing) setControl("flutter_aerodynamics", body.options?.aerodynamics ?? "");
   },
   request() {
-    if (hasMass()) return { ...editorRequest("flutter", { withVelocity: false }), velocities: airspeeds.read() };
+    if (hasMass()) return withAerodynamics({ ...editorRequest("flutter", { withVelocity: false }), velocities: airspeeds.read() });
     showProblem(new api.ProblemError(0, { title: "Flutter needs the wing's mass", detail: 'Tick "the wing has a mass model" under Wing and give its mass per length, centre of gravity and inertia.' }));
     $("mass-on").focus();
     return null;
@@ -87,18 +126,18 @@ const flutter = definePanel({
   words: () => ({ busy: "Flutter", failed: "Flutter: failed.", cancelled: "Flutter: cancelled." }),
   render({ response }) {
     $("fig-flutter").hidden = false;
-    drawFlutter(response);
+    drawFlutter(response, { model: modelOf(response) });
     $("flutter-status").textContent = flutterWords(response);
     $("fig-flutter").dataset.status = response.status;
     const lost = response.points.filter((p) => p.status !== "solved").map((p) => f(p.velocity, 2));
     $("flutter-note").textContent =
-      `Linearised about ${response.about === "jig" ? "the unloaded jig" : "the static equilibrium at each airspeed"}; ${response.aerodynamics} aerodynamics, ` +
-      `${response.unsteady === "theodorsen" ? "Theodorsen's lag" : "quasi-steady"}.` +
+      `Aerodynamics: ${modelOf(response)}, ${response.unsteady === "theodorsen" ? "with the wake's lag" : "quasi-steady (no lag)"}; ` +
+      `linearised about ${response.about === "jig" ? "the unloaded jig" : "the static equilibrium at each airspeed"}.` +
       (lost.length ? ` No equilibrium (no roots) at ${lost.join(", ")} m/s.` : "");
     $("fig-flutter").scrollIntoView({ block: "nearest" });
     $("download-json").disabled = false;
     $("download-flutter").disabled = false;
-    return `Flutter: ${response.points.length} airspeeds, ${response.modes.length} modes.`;
+    return `Flutter (${response.aerodynamic_model ?? response.aerodynamics}): ${response.points.length} airspeeds, ${response.modes.length} modes.`;
   },
   results: () => flutter.last ?? null,
 });

@@ -66,14 +66,15 @@ function renderTotals(request, response) {
       return item;
     }),
   );
-  const { velocity, alpha, weight, lift, load_factor: n, density } = request.flight;
-  const trim = `(trimmed: alpha ${f(response.totals.alpha, 2)} deg), ${density} kg/m^3`;
+  const { velocity, alpha, weight, lift, load_factor: n } = request.flight;
+  const air = request.flight.altitude != null ? `${request.flight.altitude} m` : `${request.flight.density ?? 1.225} kg/m^3`;
+  const trim = `(trimmed: alpha ${f(response.totals.alpha, 2)} deg), ${air}`;
   $("totals-condition").textContent =
     weight !== undefined
       ? `${velocity} m/s, weight ${weight} N${n !== undefined && n !== 1 ? ` × n ${n}` : ""} ${trim}`
       : lift !== undefined
         ? `${velocity} m/s, lift ${lift} N ${trim}`
-        : `${velocity} m/s, alpha ${alpha} deg, ${density} kg/m^3`;
+        : `${velocity} m/s, alpha ${alpha} deg, ${air}`;
 }
 
 /** The spar's stresses under figure 14.3, when the answer has them; else the figure is hidden. */
