@@ -31,8 +31,6 @@ objective.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from solver.errors import InfeasibleDesign, InvalidInput, SolverError, numerical_failures_as
@@ -41,15 +39,21 @@ from solver.inputs.flight import FlightCondition
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.optimization.design_space import DesignPoint, DesignSpace
+from solver.optimization.multipoint import optimize_cases
 from solver.optimization.nlp import run_ipopt, succeeded
+from solver.optimization.report import (
+    Entry,
+    constraint_value,
+    efficiency,
+    stability_value,
+    worst_violation,
+)
 from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
 from solver.results.equilibrium import Equilibrium
 from solver.statics.solve import solve
 from solver.statics.trefftz import trefftz_drag
 
 __all__ = ["optimize"]
-
-_ACTIVE = 1e-6  # relative distance to a limit at which a constraint counts as active
 
 
 class _Constraints:
@@ -60,9 +64,7 @@ class _Constraints:
         n = space.wing.n_stations
         weight = problem.lift
         # name -> (scale, lower, upper) in the function's own units
-        self.entries: list[tuple[str, float, np.ndarray, np.ndarray]] = [
-            ("lift", weight, np.array([weight]), np.array([weight]))
-        ]
+        self.entries: list[Entry] = [("lift", weight, np.array([weight]), np.array([weight]))]
         if problem.control_points is None:
             self.entries.append(("root_twist_slope", 1.0, np.zeros(1), np.zeros(1)))
         lower, upper = problem.twist_bounds
@@ -144,6 +146,8 @@ def optimize(
     rigid, rigid_twist = None, None
     if problem.objective != "spar_mass":
         rigid, rigid_twist = _rigid_optimum(wing, problem, options, tolerance)
+    if problem.multipoint:
+        return optimize_cases(wing, problem, options, rigid, rigid_twist, tolerance)
     space = DesignSpace(wing, problem, options, rigid=False)
     start = np.zeros(space.n_design)
     if rigid_twist is not None:
@@ -199,8 +203,7 @@ def optimize(
 
 def _efficiency(lift: float, problem: DesignProblem, wing: Wing, drag: float) -> float:
     """e = L^2 / (q pi b^2 D)."""
-    span = 2 * wing.semispan
-    return lift**2 / (problem.dynamic_pressure * math.pi * span**2 * drag)
+    return efficiency(lift, problem.dynamic_pressure, wing.semispan, drag)
 
 
 def _rigid_optimum(
@@ -238,12 +241,10 @@ def _infeasible(
         return InfeasibleDesign(
             "lift", f"no equilibrium near the last design: {constraints.failure}"
         )
-    worst, excess = "optimizer", 0.0
-    for name, scale, lower, upper in constraints.entries:
-        value = point.values[name] / scale
-        violation = float(np.max(np.maximum(lower / scale - value, value - upper / scale)))
-        if violation > excess:
-            worst, excess = name, violation
+    index, excess = worst_violation(
+        (entry, point.values[entry[0]]) for entry in constraints.entries
+    )
+    worst = "optimizer" if index < 0 else constraints.entries[index][0]
     return InfeasibleDesign(
         worst,
         f"IPOPT stopped with {info.status} after {info.iterations} iterations"
@@ -252,64 +253,13 @@ def _infeasible(
     )
 
 
-def _station_of(name: str, index: int, y: np.ndarray) -> float | None:
-    """[m] where a constraint binds: its station, the tip for the tip heave, None for totals."""
-    if name == "tip_heave":
-        return float(y[-1])
-    if name in ("jig_twist", "von_mises"):
-        return float(y[index])
-    return None
-
-
 def _constraint_values(
     space: DesignSpace, constraints: _Constraints, point: DesignPoint, equilibrium: Equilibrium
 ) -> list[ConstraintValue]:
-    units = {
-        "lift": "N",
-        "root_twist_slope": "deg",
-        "jig_twist": "deg",
-        "tip_heave": "m",
-        "von_mises": "Pa",
-    }
-    out = []
-    y = space.wing.y
-    for name, scale, lower, upper in constraints.entries:
-        values = point.values[name]
-        # The station closest to a limit.
-        gaps = np.minimum(values - lower, upper - values)
-        worst = int(np.argmin(gaps))
-        active = bool(gaps[worst] <= _ACTIVE * scale) if np.isfinite(gaps[worst]) else False
-        value, low, high = float(values[worst]), lower[worst], upper[worst]
-        if name == "von_mises":
-            tube = equilibrium.wing.spar
-            assert tube is not None
-            allowable = tube.material.yield_stress / space.options.safety_factor
-            stresses = equilibrium.stations.von_mises_stress
-            assert stresses is not None
-            worst = int(np.argmax(stresses))
-            value, low, high = float(stresses[worst]), -np.inf, allowable
-            active = bool(high - value <= _ACTIVE * allowable)
-        out.append(
-            ConstraintValue(
-                name=name,  # type: ignore[arg-type]
-                value=value,
-                lower=None if not np.isfinite(low) else float(low),
-                upper=None if not np.isfinite(high) else float(high),
-                unit=units[name],
-                active=active,
-                y=_station_of(name, worst, y),
-            )
-        )
-    margin = equilibrium.stability.margin
-    limit = space.problem.max_stability_margin
-    out.append(
-        ConstraintValue(
-            name="stability_margin",
-            value=margin,
-            lower=None,
-            upper=limit,
-            unit="-",
-            active=bool(limit - margin <= _ACTIVE),
-        )
-    )
+    safety = space.options.safety_factor
+    out = [
+        constraint_value(entry, point.values[entry[0]], space.wing.y, equilibrium, safety)
+        for entry in constraints.entries
+    ]
+    out.append(stability_value(equilibrium, space.problem.max_stability_margin))
     return out

@@ -67,8 +67,9 @@ class RigidOptimum:
 
 @dataclass(frozen=True, eq=False)
 class DesignCaseResult:
-    """One case of a multipoint design at the optimum: its flight and the optimal wing's
-    equilibrium in it."""
+    """One case of a multipoint design at the optimum, with the optimal wing's equilibrium.
+
+    Its flight as flown: the airspeed, the air, the load factor and lift, the angle of attack."""
 
     name: str = quantity("", "'flight' (the design flight), or the load case's name")
     velocity: float = quantity("m/s", "true airspeed")
