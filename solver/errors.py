@@ -140,10 +140,15 @@ class OptimizerNotConverged(ConvergenceError):
     constraint at the last design, in units of its scale; reason: what stopped it.
     """
 
-    def __str__(self) -> str:
-        return (
-            f"the design optimizer did not converge: {self.reason} after {self.iterations} "
-            f"iterations (largest constraint violation {self.residual_norm:.3g} of its scale)"
+    def __init__(self, velocity: float, iterations: int, residual_norm: float, reason: str):
+        self.velocity = velocity
+        self.iterations = iterations
+        self.residual_norm = residual_norm
+        self.reason = reason
+        SolverError.__init__(
+            self,
+            f"the design optimizer did not converge: {reason} after {iterations} iterations "
+            f"(largest constraint violation {residual_norm:.3g} of its scale)",
         )
 
 

@@ -137,11 +137,13 @@ def run_ipopt(
         # the optimum then holds to ~1e-9 in drag and ~1e-7 deg in twist.
         "ipopt.acceptable_tol": 1e-8,
         "ipopt.acceptable_iter": 3,
-        "ipopt.print_level": 0,
+        "ipopt.print_level": int(__import__("os").environ.get("PL", 0)),
         "ipopt.sb": "yes",
         "print_time": False,
         "show_eval_warnings": False,  # a design without equilibrium: a NaN IPOPT steps back from
     }
+    import json, os
+    options.update(json.loads(os.environ.get("IPOPTX", "{}")))
     ipopt = ca.nlpsol("flexwing_design", "ipopt", nlp, options)  # type: ignore[arg-type]
     lbg, ubg = constraint_bounds
     scale = constraints.variable_scale
