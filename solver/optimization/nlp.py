@@ -116,10 +116,13 @@ def run_ipopt(
     tolerance: float,
     history: int,
     evaluations: Any,
+    update: str = "bfgs",
 ) -> tuple[np.ndarray, OptimizerInfo]:
     """IPOPT from `start` within `bounds` (each (nv,), physical units), the constraints within
     `constraint_bounds` (scaled as `constraints.values`), to `tolerance`, with an L-BFGS history
-    of `history` pairs. `evaluations()`: how many equilibria were solved (read at the end).
+    of `history` pairs updated by `update` ("bfgs", or "sr1": its approximation may be
+    indefinite, as a constrained problem's Lagrangian is). `evaluations()`: how many equilibria
+    were solved (read at the end).
     Returns the last design (physical units) and what IPOPT did."""
     started = time.perf_counter()
     n_design = start.size
@@ -130,6 +133,7 @@ def run_ipopt(
     options: dict[str, Any] = {
         "ipopt.hessian_approximation": "limited-memory",
         "ipopt.limited_memory_max_history": history,
+        "ipopt.limited_memory_update_type": update,
         "ipopt.tol": tolerance,
         "ipopt.constr_viol_tol": tolerance,
         "ipopt.max_iter": MAX_ITERATIONS,
@@ -137,13 +141,11 @@ def run_ipopt(
         # the optimum then holds to ~1e-9 in drag and ~1e-7 deg in twist.
         "ipopt.acceptable_tol": 1e-8,
         "ipopt.acceptable_iter": 3,
-        "ipopt.print_level": int(__import__("os").environ.get("PL", 0)),
+        "ipopt.print_level": 0,
         "ipopt.sb": "yes",
         "print_time": False,
         "show_eval_warnings": False,  # a design without equilibrium: a NaN IPOPT steps back from
     }
-    import json, os
-    options.update(json.loads(os.environ.get("IPOPTX", "{}")))
     ipopt = ca.nlpsol("flexwing_design", "ipopt", nlp, options)  # type: ignore[arg-type]
     lbg, ubg = constraint_bounds
     scale = constraints.variable_scale
