@@ -209,8 +209,7 @@ SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
     InfeasibleDesign: lambda e: Problem(
         "infeasible-design",
         str(e),
-        extensions={"constraint": e.constraint}
-        | ({} if e.case is None else {"case": e.case}),
+        extensions={"constraint": e.constraint} | ({} if e.case is None else {"case": e.case}),
     ),
 }
 
