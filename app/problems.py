@@ -86,7 +86,8 @@ PROBLEM_TYPES = _types(
         422,
         "The design problem has no acceptable optimum: `constraint` names the constraint that "
         "could not be met (lift, jig_twist, von_mises, tip_heave, stability_margin) or "
-        "`optimizer` when IPOPT failed otherwise. Relax it, or give the design more freedom.",
+        "`optimizer` when IPOPT failed otherwise, and with load cases `case` the case it could "
+        "not be met in. Relax it, or give the design more freedom.",
     ),
     ProblemType(
         "body-too-large",
@@ -206,7 +207,9 @@ SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
         },
     ),
     InfeasibleDesign: lambda e: Problem(
-        "infeasible-design", str(e), extensions={"constraint": e.constraint}
+        "infeasible-design",
+        str(e),
+        extensions={"constraint": e.constraint} | ({} if e.case is None else {"case": e.case}),
     ),
 }
 
@@ -261,6 +264,11 @@ class ProblemDetails(BaseModel):
     )
     constraint: str | None = Field(
         default=None, description="infeasible-design: the constraint that could not be met."
+    )
+    case: str | None = Field(
+        default=None,
+        description="infeasible-design of a problem with load cases: the case it could not be "
+        "met in ('flight': the design flight; else a load case's name).",
     )
 
 

@@ -164,7 +164,9 @@ class Settings(BaseSettings):
         le=100_000,
         description=(
             "Most load cases in one /loads: those given and those its envelope derives "
-            "together (a 200-case envelope of the study's wing takes about a second)."
+            "together (a 200-case envelope of the study's wing takes about a second); and in "
+            "one /optimize (its load_cases: each case adds an equilibrium to every step of "
+            "the design)."
         ),
     )
     max_body_bytes: int = Field(

@@ -35,6 +35,7 @@ from solver.errors import (
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
+    OptimizerNotConverged,
     SolverError,
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
@@ -52,6 +53,7 @@ from solver.inputs.design import (
     Design,
     DesignCondition,
     DesignConstraints,
+    DesignLoadCase,
     DesignProblem,
     TwistDesign,
     WallDesign,
@@ -90,7 +92,13 @@ from solver.results.controls import (
     RollResponse,
     RollStability,
 )
-from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
+from solver.results.design import (
+    ConstraintValue,
+    DesignCaseResult,
+    OptimalDesign,
+    OptimizerInfo,
+    RigidOptimum,
+)
 from solver.results.equilibrium import (
     Equilibrium,
     Fold,
@@ -173,7 +181,9 @@ __all__ = [
     "ConvergenceError",
     "Design",
     "DesignCondition",
+    "DesignCaseResult",
     "DesignConstraints",
+    "DesignLoadCase",
     "DesignProblem",
     "digest",
     "divergence_summary",
@@ -233,6 +243,7 @@ __all__ = [
     "NoFlutter",
     "OperatingPoint",
     "OptimalDesign",
+    "OptimizerNotConverged",
     "optimize",
     "OptimizeInput",
     "OptimizerInfo",

@@ -13,6 +13,7 @@ __all__ = [
     "InfeasibleDesign",
     "InvalidInput",
     "NoEquilibrium",
+    "OptimizerNotConverged",
     "SolverError",
     "numerical_failures_as",
 ]
@@ -107,16 +108,48 @@ class InfeasibleDesign(SolverError):
         violation: [-] how far the last design the optimizer reached breaks `constraint`, in
             units of the constraint's scale (its limit, or 1 for dimensionless ones); None when
             no design was judged (no equilibrium there, or the problem cannot be posed).
+        case: the load case in which `constraint` could not be met ("flight": the design
+            flight, else a load case's name), for a problem with load cases; None for a
+            single-point problem, or a constraint of no case (the jig twist's bounds).
     """
 
-    def __init__(self, constraint: str, detail: str, violation: float | None = None) -> None:
+    def __init__(
+        self,
+        constraint: str,
+        detail: str,
+        violation: float | None = None,
+        case: str | None = None,
+    ) -> None:
         self.constraint = constraint
         self.detail = detail
         self.violation = violation
-        super().__init__(f"no feasible optimum: {constraint}: {detail}")
+        self.case = case
+        where = "" if case is None else f" in case {case!r}"
+        super().__init__(f"no feasible optimum: {constraint}{where}: {detail}")
 
-    def __reduce__(self) -> tuple[type, tuple[str, str, float | None]]:
-        return type(self), (self.constraint, self.detail, self.violation)
+    def __reduce__(self) -> tuple[type, tuple[str, str, float | None, str | None]]:
+        return type(self), (self.constraint, self.detail, self.violation, self.case)
+
+
+class OptimizerNotConverged(ConvergenceError):
+    """The optimizer stopped before its optimality test held, at a design it could not judge
+    (its iteration limit): not a proof that no design is feasible (`InfeasibleDesign`).
+
+    Attributes as `ConvergenceError`'s: velocity: [m/s] the design flight's airspeed;
+    iterations: the optimizer's iterations; residual_norm: [-] the largest violation of a
+    constraint at the last design, in units of its scale; reason: what stopped it.
+    """
+
+    def __init__(self, velocity: float, iterations: int, residual_norm: float, reason: str):
+        self.velocity = velocity
+        self.iterations = iterations
+        self.residual_norm = residual_norm
+        self.reason = reason
+        SolverError.__init__(
+            self,
+            f"the design optimizer did not converge: {reason} after {iterations} iterations "
+            f"(largest constraint violation {residual_norm:.3g} of its scale)",
+        )
 
 
 @contextlib.contextmanager

@@ -39,7 +39,11 @@ STATIONS_LIMIT: dict[str, Any] = {"x-flexwing-limit": "max_stations"}
 SWEEP_POINTS_LIMIT: dict[str, Any] = {"x-flexwing-limit": "max_sweep_points"}
 # The settings limit a list of items is held to (by the item's class): at most one per station
 # unless named here.
-ITEM_LIMITS: dict[str, dict[str, Any]] = {"FlightCase": {"x-flexwing-limit": "max_load_cases"}}
+_LOAD_CASES_LIMIT: dict[str, Any] = {"x-flexwing-limit": "max_load_cases"}
+ITEM_LIMITS: dict[str, dict[str, Any]] = {
+    "FlightCase": _LOAD_CASES_LIMIT,
+    "DesignLoadCase": _LOAD_CASES_LIMIT,
+}
 # A list of values (an envelope's weights, its altitudes): at most this many.
 MAX_VALUES = 64
 
@@ -444,11 +448,28 @@ _models: dict[tuple[type, str | None, tuple[str, ...]], Any] = {}
 def request_model(cls: type, without: tuple[str, ...] = ()) -> Any:
     """The request model of solver input dataclass `cls` (its fields `without` left out): a
     pydantic model, or for a type given in several ways (`cls.WAYS`) their tagged union."""
-    ways: dict[str, tuple[str, ...]] | None = getattr(cls, "WAYS", None)
-    if ways is None:
+    declared: dict[str, tuple[str, ...]] | None = getattr(cls, "WAYS", None)
+    if declared is None:
         return _model(cls, None, without)
-    members = [Annotated[_model(cls, way, without), Tag(f"@{way}")] for way in ways]
+    # A way whose naming field is left out is no way here (a design's load case is trimmed: its
+    # flight has no alpha); the others leave out what their way has not anyway.
+    ways = {way: names for way, names in declared.items() if names[0] not in without}
+    absent = {name for names in declared.values() for name in names}
+    members = [
+        Annotated[
+            _model(cls, way, tuple(n for n in without if n not in absent - set(names))),
+            Tag(f"@{way}"),
+        ]
+        for way, names in ways.items()
+    ]
     rule: str = cls.RULE  # type: ignore[attr-defined]
+    if len(ways) < len(declared):
+        optional = sorted({name for names in ways.values() for name in names[1:]})
+        rule = (
+            f"give exactly one of {' or '.join(names[0] for names in ways.values())}"
+            + (f", with an optional {', '.join(optional)}" if optional else "")
+            + f" (no {', '.join(way for way in declared if way not in ways)} here)"
+        )
 
     def which(value: Any) -> str | None:
         """The tag of the one way the value is given; None if none or several are."""

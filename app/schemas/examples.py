@@ -145,6 +145,29 @@ OPTIMIZE_EXAMPLES: dict[str, Any] = {
         "value": STUDY_OPTIMIZE
         | {"design": {"jig_twist": {"control_points": None}}, "smoothness_weight": 0.01},
     },
+    "multipoint": {
+        "summary": "The lightest tube spar for the design flight and a 2.5 g pull-up (multipoint)",
+        "value": {
+            "wing": SOLVE_EXAMPLES["tube_spar"]["value"]["wing"]
+            | {
+                "spar": SOLVE_EXAMPLES["tube_spar"]["value"]["wing"]["spar"]
+                | {
+                    "wall_thickness": 0.002,
+                    "material": SOLVE_EXAMPLES["tube_spar"]["value"]["wing"]["spar"]["material"]
+                    | {"yield_stress": 30e6},
+                }
+            },
+            "flight": {"velocity": 14.0, "weight": 300.0},
+            "load_cases": [
+                {
+                    "name": "pull-up",
+                    "flight": {"velocity": 14.0, "weight": 300.0, "load_factor": 2.5},
+                }
+            ],
+            "design": {"wall_thickness": {"lower": 0.0005, "upper": 0.01}},
+            "objective": "spar_mass",
+        },
+    },
 }
 
 

@@ -101,9 +101,19 @@ def panel_errors(task: Any, settings: Settings) -> list[FieldError]:
 
 def case_errors(task: Any, settings: Settings) -> list[FieldError]:
     """A sizing input's load cases, given and derived from its envelope together, within
-    FLEXWING_MAX_LOAD_CASES (counted without deriving them: `solver.LoadsInput.case_count`)."""
-    count = getattr(task, "case_count", None)
+    FLEXWING_MAX_LOAD_CASES (counted without deriving them: `solver.LoadsInput.case_count`);
+    a design problem's load cases (`solver.DesignProblem.load_cases`) likewise."""
     limit = settings.max_load_cases
+    design_cases = getattr(getattr(task, "problem", None), "load_cases", None)
+    if design_cases is not None and len(design_cases) > limit:
+        return [
+            FieldError(
+                "load_cases",
+                f"gives {len(design_cases)} load cases; at most {limit} are allowed "
+                "(FLEXWING_MAX_LOAD_CASES)",
+            )
+        ]
+    count = getattr(task, "case_count", None)
     if count is None or count <= limit:
         return []
     given = len(task.cases)

@@ -15,10 +15,12 @@ from solver.fields import parameter
 from solver.inputs.flight import ISA_SEA_LEVEL_DENSITY, FlightCondition, dynamic_pressure
 
 __all__ = [
+    "DESIGN_FLIGHT_CASE",
     "DESIGN_FLIGHT_RULE",
     "Design",
     "DesignCondition",
     "DesignConstraints",
+    "DesignLoadCase",
     "DesignProblem",
     "TwistDesign",
     "WallDesign",
@@ -26,6 +28,8 @@ __all__ = [
 
 Objective = Literal["induced_drag", "trefftz_drag", "spar_mass"]
 DESIGN_FLIGHT_RULE = "give lift, or weight with an optional load_factor"
+# The design flight's name among a multipoint problem's cases (its answers and failures).
+DESIGN_FLIGHT_CASE = "flight"
 
 
 def _checked(instance: object) -> None:
@@ -222,6 +226,45 @@ class DesignConstraints:
 
 
 @dataclass(frozen=True)
+class DesignLoadCase:
+    """A load case the designed wing must fly too: a named flight, trimmed (its angle of attack
+    solved for, the lift `load_factor * weight` or `lift`), at an airspeed."""
+
+    name: str = parameter(
+        "",
+        f"the case's name, unique ({DESIGN_FLIGHT_CASE!r} names the design flight)",
+        form="text",
+        le=80,
+        example="pull-up",
+    )
+    flight: FlightCondition = parameter(
+        "",
+        "the flight, trimmed: weight and load_factor, or lift, at an airspeed (true or "
+        "equivalent) in air (density or altitude); its angle of attack is the design's to find",
+        form="nested",
+        given=FlightCondition,
+        without=("alpha",),
+    )
+
+    def __post_init__(self) -> None:
+        if self.name == DESIGN_FLIGHT_CASE:
+            raise InvalidInput("name", f"{DESIGN_FLIGHT_CASE!r} names the design flight")
+        if not isinstance(self.flight, FlightCondition):
+            raise InvalidInput("flight", "must be a solver.FlightCondition")
+        if not self.flight.trimmed or self.flight.velocity is None:
+            raise InvalidInput(
+                "flight",
+                "a design's load case flies trimmed (weight and load_factor, or lift) at an "
+                "airspeed: its angle of attack is solved for",
+            )
+
+    @property
+    def inertial_load_factor(self) -> float:
+        """The load factor the wing's own mass carries in this case (1 for a lift)."""
+        return self.flight.inertial_load_factor or 1.0
+
+
+@dataclass(frozen=True)
 class DesignProblem:
     """A design problem: the jig twist (and spar wall) of the wing that flies.
 
@@ -229,6 +272,13 @@ class DesignProblem:
     "trefftz_drag" (far field: a zigzag twist cannot game it) or "spar_mass" (needs
     `design.wall_thickness`). smoothness_weight [N/deg^2]: w of the penalty on the total
     twist's second differences.
+
+    With `load_cases` the problem is multipoint (`solver.optimization.multipoint`): one jig
+    twist and one spar for the design flight and every case, each case at its own trimmed angle
+    of attack. The objective, the drags and the twist's smoothness are the design flight's (it
+    flies at its fixed jig alpha, the twist trimming it, as without cases); the lift, the
+    spar's stress and the tip heave are held in every case, and the wing's own mass (wing.mass)
+    weighs n g in each.
     """
 
     flight: DesignCondition = parameter(
@@ -261,6 +311,20 @@ class DesignProblem:
         given=DesignConstraints,
         default_factory=DesignConstraints,
     )
+    load_cases: tuple[DesignLoadCase, ...] = parameter(
+        "",
+        "further load cases the designed wing must fly (a multipoint design: at most "
+        "FLEXWING_MAX_LOAD_CASES), each trimmed at its own angle of attack, with the lift, the "
+        "spar's stress and the tip heave held in each and the wing's own mass (wing.mass) "
+        "under each load factor; the objective stays the design flight's (none: the "
+        "single-point problem)",
+        form="items",
+        given=DesignLoadCase,
+        default=(),
+        example=[
+            {"name": "pull-up", "flight": {"velocity": 12.0, "weight": 300.0, "load_factor": 2.5}}
+        ],
+    )
 
     def __post_init__(self) -> None:
         _checked(self)
@@ -268,6 +332,15 @@ class DesignProblem:
             raise InvalidInput(
                 "objective", "spar_mass needs the spar sized (design.wall_thickness)"
             )
+        cases = tuple(self.load_cases or ())
+        object.__setattr__(self, "load_cases", cases)
+        names: list[str] = []
+        for i, case in enumerate(cases):
+            if not isinstance(case, DesignLoadCase):
+                raise InvalidInput(f"load_cases[{i}]", "must be a solver.DesignLoadCase")
+            if case.name in names:
+                raise InvalidInput(f"load_cases[{i}].name", f"{case.name!r} names another case")
+            names.append(case.name)
 
     # What the optimiser reads, by its own names.
     @property
@@ -323,10 +396,17 @@ class DesignProblem:
     def max_stability_margin(self) -> float:
         return self.constraints.max_stability_margin
 
+    @property
+    def multipoint(self) -> bool:
+        """The problem has load cases beside its design flight."""
+        return bool(self.load_cases)
+
     def for_the_rigid_wing(self) -> DesignProblem:
-        """The same problem for the rigid wing: the twist alone, no tip-heave limit."""
+        """The same problem for the rigid wing: the twist alone, no tip-heave limit, the design
+        flight alone."""
         return dataclasses.replace(
             self,
+            load_cases=(),
             design=dataclasses.replace(self.design, wall_thickness=None),
             constraints=dataclasses.replace(self.constraints, max_tip_heave=None),
             objective="induced_drag" if self.objective == "spar_mass" else self.objective,

@@ -162,12 +162,17 @@ its spar's mass while it carries the lift, by IPOPT on exact gradients of the co
 equilibrium.
 
 Answers the optimal design, the optimal wing's equilibrium (as /solve answers it), every
-constraint with its activity, span efficiencies and the rigid wing's optimum. No feasible
-optimum: 422 `/problems/infeasible-design` naming the constraint. Long problems can run as jobs
-(`POST /jobs` with operation `optimize`).""",
-        refusals="no feasible optimum (/problems/infeasible-design, `constraint` names which), "
-        "no equilibrium or no convergence of the optimal wing (/problems/no-equilibrium, "
-        "/problems/not-converged).",
+constraint with its activity, span efficiencies and the rigid wing's optimum. With
+`load_cases` (a multipoint design) one jig twist and spar for the design flight and every case,
+each trimmed at its own angle of attack, the spar's stress held at every station of every case;
+the objective is the design flight's, and each case's equilibrium is answered. No feasible
+optimum: 422 `/problems/infeasible-design` naming the constraint (and the case). Long problems
+can run as jobs (`POST /jobs` with operation `optimize`).""",
+        refusals="no feasible optimum (/problems/infeasible-design, `constraint` names which, "
+        "`case` in which load case), no equilibrium or no convergence of the optimal wing, or "
+        "a multipoint design stopped by the optimizer's iteration limit "
+        "(/problems/no-equilibrium, /problems/not-converged); more load cases than "
+        "FLEXWING_MAX_LOAD_CASES is invalid input naming `load_cases`.",
         budget="optimize",
         answered="optimum",
         answers=(InfeasibleDesign, NoEquilibrium, ConvergenceError),

@@ -18,19 +18,21 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.interpolate
 import scipy.linalg
 
-from solver.errors import ConvergenceError
+from solver.errors import ConvergenceError, InfeasibleDesign
 from solver.inputs.design import DesignProblem
 from solver.inputs.options import SolverOptions
 from solver.inputs.spar import TubeSpar
 from solver.inputs.wing import Wing
 from solver.model.beam import DEG_PER_RAD
 from solver.model.geometry import DEG
+from solver.numerics.evaluation import AlphaTerms, Evaluation
 from solver.numerics.newton import newton
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import strip_sum, trefftz_matrix
@@ -69,6 +71,7 @@ class DesignSpace:
         self, wing: Wing, problem: DesignProblem, options: SolverOptions, rigid: bool
     ) -> None:
         self.wing, self.problem, self.options, self.rigid = wing, problem, options, rigid
+        self.velocity = problem.velocity  # [m/s] names the flight in errors
         self.system = CoupledSystem.of(wing, problem.alpha, options)
         self.layout = self.system.layout
         self.q = problem.dynamic_pressure
@@ -93,10 +96,37 @@ class DesignSpace:
     def n_design(self) -> int:
         return self.n_twist + self.n_wall
 
+    @property
+    def walls(self) -> slice:
+        """Where the wall thicknesses sit in a design vector (after the twist variables)."""
+        return slice(self.n_twist, self.n_twist + self.n_wall)
+
     def split(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """(jig twist (N,) [deg], wall thickness (N,) [m] or None)."""
         jig = self.basis @ v[: self.n_twist]
-        return jig, (v[self.n_twist :] if self.n_wall else None)
+        return jig, (v[self.walls] if self.n_wall else None)
+
+    def variable_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """(nv,) lowest and highest design variables: the twist's free (its bounds are
+        constraints, on the jig twist at the stations), the walls within the problem's bounds
+        and the tube's radius. Raises `InfeasibleDesign` for walls no tube can have."""
+        lower_v = np.full(self.n_design, -np.inf)
+        upper_v = np.full(self.n_design, np.inf)
+        if self.n_wall:
+            tube = self.spar
+            assert tube is not None
+            low, high = self.problem.wall_thickness_bounds
+            radius = tube.outer_diameter / 2
+            if np.any(radius < low):
+                thin = int(np.argmin(radius))
+                raise InfeasibleDesign(
+                    "wall_thickness",
+                    f"the thinnest wall allowed, {low:g} m, is thicker than the tube's radius at "
+                    f"station {thin} ({radius[thin]:.3g} m): no tube has such a wall",
+                )
+            lower_v[self.walls] = low
+            upper_v[self.walls] = np.minimum(high, radius)
+        return lower_v, upper_v
 
     def tube(self, wall: np.ndarray | None) -> TubeSpar | None:
         if self.spar is None:
@@ -134,7 +164,9 @@ class DesignSpace:
 
     # --- the equilibrium of a design
 
-    def _equilibrium(self, p: np.ndarray) -> np.ndarray:
+    def _equilibrium(self, p: np.ndarray, load: np.ndarray | None = None) -> np.ndarray:
+        """The design's equilibrium from the last one; `load`: (n_unknowns,) what the wing's
+        own mass adds to r1 (per unit q, constant in x), or None."""
         model, q, layout = self.system.model, self.q, self.layout
         if self.rigid:
             # Undeformed: the tangency rows alone, linear in the circulation at z = 0.
@@ -143,17 +175,16 @@ class DesignSpace:
             rows, cols = layout.tangency_rows, layout.circulation
             x[cols] = -np.linalg.solve(ev.jacobian0[rows, cols], ev.r0[rows])
             return x
-        result = newton(
-            lambda x: model.evaluate(x, p),
-            lambda x: model.residual(x, p),
-            self.x,
-            q,
-            self.options.tolerance,
-            _NEWTON_ITERATIONS,
+        evaluate: Callable[[np.ndarray], Evaluation] = lambda x: model.evaluate(x, p)  # noqa: E731
+        residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]] = (  # noqa: E731
+            lambda x: model.residual(x, p)
         )
+        if load is not None:
+            evaluate, residual = _loaded(evaluate, residual, load)
+        result = newton(evaluate, residual, self.x, q, self.options.tolerance, _NEWTON_ITERATIONS)
         if not result.converged:
             raise ConvergenceError(
-                self.problem.velocity, result.iterations, result.residual_norm, result.reason
+                self.velocity, result.iterations, result.residual_norm, result.reason
             )
         return result.x
 
@@ -189,7 +220,8 @@ class DesignSpace:
         r_v[:, : self.n_twist] = jig_rows @ self.basis
         moment, torque = self._internal_loads(ev.r1, tube)  # per unit q
         if self.n_wall:
-            r_v[:, self.n_twist :] = self._stiffness_rows(moment, torque, tube)
+            r_v[:, self.walls] = self._stiffness_rows(moment, torque, tube)
+        self._explicit_rows(r_v, terms, tube)
         if self.rigid:
             sensitivity = np.zeros((nx, nv))
             rows, cols = layout.tangency_rows, layout.circulation
@@ -209,6 +241,7 @@ class DesignSpace:
         jig_v[:, : self.n_twist] = self.basis
         lift_v = np.zeros(nv)
         lift_v[: self.n_twist] = terms.lift_x[twist_cols] / self.cos_sweep @ self.basis
+        self._explicit_lift(lift_v, terms)
         record("lift", q * terms.lift, q * terms.lift_x, q * lift_v)
         strips = self.strips @ x[layout.circulation]
         trefftz_x = np.zeros(nx)
@@ -245,8 +278,27 @@ class DesignSpace:
         heave_x[layout.heave.stop - 1] = 1.0
         record("tip_heave", x[layout.heave][-1], heave_x, np.zeros(nv))
         if tube is not None:
-            self._spar_functions(record, tube, moment, torque, ev, nv, nx)
+            self._spar_functions(record, tube, moment, torque, ev, terms, nv, nx)
         return DesignPoint(x, values, gradients)
+
+    # What a design vector changes beyond the twist and the stiffnesses (a load case's angle of
+    # attack, the spar's own mass): nothing here (`solver.optimization.case_space`).
+
+    def _explicit_rows(self, r_v: np.ndarray, terms: AlphaTerms, tube: TubeSpar | None) -> None:
+        """Add to r_v (n_unknowns, nv) the residual's other explicit derivatives."""
+
+    def _explicit_lift(self, lift_v: np.ndarray, terms: AlphaTerms) -> None:
+        """Add to lift_v (nv,) [m^2] the lift per unit q's other explicit derivatives."""
+
+    def _explicit_loads(
+        self,
+        moment_v: np.ndarray,
+        torque_v: np.ndarray,
+        terms: AlphaTerms,
+        tube: TubeSpar | None,
+    ) -> None:
+        """Add to moment_v, torque_v (N, nv) [m^3] the internal loads' (per unit q) other
+        explicit derivatives."""
 
     def _internal_loads(
         self, r1: np.ndarray, tube: TubeSpar | None
@@ -292,7 +344,7 @@ class DesignSpace:
                 out[twist, i] += q * DEG_PER_RAD * self.h[j] / 2 * torque[i] / gj[i] ** 2 * d_gj[i]
         return out
 
-    def _spar_functions(self, record, tube, moment, torque, ev, nv, nx) -> None:
+    def _spar_functions(self, record, tube, moment, torque, ev, terms, nv, nx) -> None:
         layout, q, n = self.layout, self.q, self.wing.n_stations
         ei, gj = self._stiffness(tube)
         moment_x = self._back_substitute(ev.jacobian1[layout.bending_rows], ei, 1.0)
@@ -302,6 +354,7 @@ class DesignSpace:
         twist_cols = layout.twist
         moment_v[:, : self.n_twist] = moment_x[:, twist_cols] / self.cos_sweep @ self.basis
         torque_v[:, : self.n_twist] = torque_x[:, twist_cols] / self.cos_sweep @ self.basis
+        self._explicit_loads(moment_v, torque_v, terms, tube)
         radius = tube.outer_diameter / 2
         second, polar = tube.second_moment, tube.polar_moment
         allowable = tube.material.yield_stress / self.options.safety_factor
@@ -322,7 +375,7 @@ class DesignSpace:
             inner = tube.outer_diameter - 2 * tube.wall_thickness
             d_second = math.pi / 64 * 8 * inner**3  # dI/dt [m^3]
             # d(bend)/dt = -bend / I dI/dt, likewise the shear with J = 2 I.
-            usage_v[:, self.n_twist :] += np.diag(
+            usage_v[:, self.walls] += np.diag(
                 -2 * bend**2 * d_second / second - 6 * shear**2 * d_second / second
             )
         record("von_mises", usage[:-1], usage_x[:-1], usage_v[:-1])
@@ -333,5 +386,26 @@ class DesignSpace:
             weights = np.zeros(n)
             weights[:-1] += self.h / 2
             weights[1:] += self.h / 2
-            area_v[self.n_twist :] = 2 * tube.material.density * weights * d_area
+            area_v[self.walls] = 2 * tube.material.density * weights * d_area
         record("spar_mass", tube.mass(self.arc), np.zeros(nx), area_v)
+
+
+def _loaded(
+    evaluate: Callable[[np.ndarray], Evaluation],
+    residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    load: np.ndarray,
+) -> tuple[
+    Callable[[np.ndarray], Evaluation], Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+]:
+    """The model's evaluations with `load` (n_unknowns,) added to r1: a load constant in x
+    (`solver.statics.system.CoupledSystem._loaded`)."""
+
+    def loaded_evaluate(x: np.ndarray) -> Evaluation:
+        ev = evaluate(x)
+        return dataclasses.replace(ev, r1=ev.r1 + load)
+
+    def loaded_residual(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        r0, r1 = residual(x)
+        return r0, r1 + load
+
+    return loaded_evaluate, loaded_residual

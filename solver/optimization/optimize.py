@@ -31,11 +31,6 @@ objective.
 
 from __future__ import annotations
 
-import math
-import time
-from typing import Any
-
-import casadi as ca
 import numpy as np
 
 from solver.errors import InfeasibleDesign, InvalidInput, SolverError, numerical_failures_as
@@ -44,80 +39,21 @@ from solver.inputs.flight import FlightCondition
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.optimization.design_space import DesignPoint, DesignSpace
+from solver.optimization.multipoint import optimize_cases
+from solver.optimization.nlp import run_ipopt, succeeded
+from solver.optimization.report import (
+    Entry,
+    constraint_value,
+    efficiency,
+    stability_value,
+    worst_violation,
+)
 from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
 from solver.results.equilibrium import Equilibrium
 from solver.statics.solve import solve
 from solver.statics.trefftz import trefftz_drag
 
 __all__ = ["optimize"]
-
-_ACTIVE = 1e-6  # relative distance to a limit at which a constraint counts as active
-
-
-class _Functions(ca.Callback):
-    """v -> (objective, constraints) for IPOPT, from a `DesignSpace`."""
-
-    def __init__(self, space: DesignSpace, constraints: _Constraints) -> None:
-        ca.Callback.__init__(self)
-        self.space, self.constraints = space, constraints
-        self.jacobian_callback: _Jacobian | None = None
-        self.construct("flexwing_design", {})
-
-    def get_n_in(self) -> int:
-        return 1
-
-    def get_n_out(self) -> int:
-        return 2
-
-    def get_sparsity_in(self, i: int) -> ca.Sparsity:
-        return ca.Sparsity.dense(self.space.n_design, 1)
-
-    def get_sparsity_out(self, i: int) -> ca.Sparsity:
-        return ca.Sparsity.dense(1, 1) if i == 0 else ca.Sparsity.dense(self.constraints.size, 1)
-
-    def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
-        point = self.constraints.point(np.array(arg[0]).ravel())
-        if point is None:
-            return [ca.DM(math.nan), ca.DM.nan(self.constraints.size, 1)]
-        return [ca.DM(self.constraints.objective(point)), ca.DM(self.constraints.values(point))]
-
-    def has_jacobian(self) -> bool:
-        return True
-
-    def get_jacobian(self, name: str, inames: Any, onames: Any, opts: Any) -> ca.Function:
-        self.jacobian_callback = _Jacobian(name, self.space, self.constraints, opts)
-        return self.jacobian_callback
-
-
-class _Jacobian(ca.Callback):
-    def __init__(self, name: str, space: DesignSpace, constraints: _Constraints, opts: Any) -> None:
-        ca.Callback.__init__(self)
-        self.space, self.constraints = space, constraints
-        self.construct(name, opts)
-
-    def get_n_in(self) -> int:
-        return 3
-
-    def get_n_out(self) -> int:
-        return 2
-
-    def get_sparsity_in(self, i: int) -> ca.Sparsity:
-        sizes = (self.space.n_design, 1, self.constraints.size)
-        return ca.Sparsity.dense(sizes[i], 1)
-
-    def get_sparsity_out(self, i: int) -> ca.Sparsity:
-        rows = 1 if i == 0 else self.constraints.size
-        return ca.Sparsity.dense(rows, self.space.n_design)
-
-    def eval(self, arg: Any) -> list[Any]:  # type: ignore[override]
-        point = self.constraints.point(np.array(arg[0]).ravel())
-        nv = self.space.n_design
-        if point is None:
-            return [ca.DM.nan(1, nv), ca.DM.nan(self.constraints.size, nv)]
-        return [
-            ca.DM(self.constraints.objective_gradient(point)[None, :]),
-            ca.DM(self.constraints.jacobian(point)),
-        ]
 
 
 class _Constraints:
@@ -128,9 +64,7 @@ class _Constraints:
         n = space.wing.n_stations
         weight = problem.lift
         # name -> (scale, lower, upper) in the function's own units
-        self.entries: list[tuple[str, float, np.ndarray, np.ndarray]] = [
-            ("lift", weight, np.array([weight]), np.array([weight]))
-        ]
+        self.entries: list[Entry] = [("lift", weight, np.array([weight]), np.array([weight]))]
         if problem.control_points is None:
             self.entries.append(("root_twist_slope", 1.0, np.zeros(1), np.zeros(1)))
         lower, upper = problem.twist_bounds
@@ -179,58 +113,22 @@ class _Constraints:
 def _run_ipopt(
     space: DesignSpace, problem: DesignProblem, start: np.ndarray, tolerance: float
 ) -> tuple[np.ndarray, OptimizerInfo, _Constraints]:
-    started = time.perf_counter()
     constraints = _Constraints(space, problem)
-    functions = _Functions(space, constraints)
-    v = ca.MX.sym("v", space.n_design)
-    objective, g = functions(v)
-    nlp = {"x": v, "f": objective, "g": g}
-    options: dict[str, Any] = {
-        "ipopt.hessian_approximation": "limited-memory",
-        # Twist alone is nearly quadratic: a history as long as the design vector (up to 20)
-        # takes 46 iterations on 30 stations where IPOPT's 6 takes 66. With the spar's walls
-        # the long history overshoots into designs without equilibrium: IPOPT's 6 there.
-        "ipopt.limited_memory_max_history": 6 if space.n_wall else min(20, space.n_design),
-        "ipopt.tol": tolerance,
-        "ipopt.constr_viol_tol": tolerance,
-        "ipopt.max_iter": 500,
-        # Stop three iterations after the error is below 1e-8 (default: fifteen below 1e-6):
-        # the optimum then holds to ~1e-9 in drag and ~1e-7 deg in twist.
-        "ipopt.acceptable_tol": 1e-8,
-        "ipopt.acceptable_iter": 3,
-        "ipopt.print_level": 0,
-        "ipopt.sb": "yes",
-        "print_time": False,
-        "show_eval_warnings": False,  # a design without equilibrium: a NaN IPOPT steps back from
-    }
-    ipopt = ca.nlpsol("flexwing_design", "ipopt", nlp, options)  # type: ignore[arg-type]
-    lower_v = np.full(space.n_design, -np.inf)
-    upper_v = np.full(space.n_design, np.inf)
-    if space.n_wall:
-        tube = space.spar
-        assert tube is not None
-        low, high = problem.wall_thickness_bounds
-        radius = tube.outer_diameter / 2
-        if np.any(radius < low):
-            thin = int(np.argmin(radius))
-            raise InfeasibleDesign(
-                "wall_thickness",
-                f"the thinnest wall allowed, {low:g} m, is thicker than the tube's radius at "
-                f"station {thin} ({radius[thin]:.3g} m): no tube has such a wall",
-            )
-        lower_v[space.n_twist :] = low
-        upper_v[space.n_twist :] = np.minimum(high, radius)
-    lbg, ubg = constraints.bounds()
-    scale = constraints.variable_scale
-    result = ipopt(x0=start / scale, lbx=lower_v / scale, ubx=upper_v / scale, lbg=lbg, ubg=ubg)
-    stats = ipopt.stats()
-    info = OptimizerInfo(
-        iterations=int(stats.get("iter_count", 0)),
-        evaluations=space.evaluations,
-        status=str(stats.get("return_status", "unknown")),
-        seconds=time.perf_counter() - started,
+    bounds = space.variable_bounds()
+    # Twist alone is nearly quadratic: a history as long as the design vector (up to 20)
+    # takes 46 iterations on 30 stations where IPOPT's 6 takes 66. With the spar's walls
+    # the long history overshoots into designs without equilibrium: IPOPT's 6 there.
+    history = 6 if space.n_wall else min(20, space.n_design)
+    v, info = run_ipopt(
+        constraints,
+        start,
+        bounds,
+        constraints.bounds(),
+        tolerance,
+        history,
+        lambda: space.evaluations,
     )
-    return np.array(result["x"]).ravel() * scale, info, constraints
+    return v, info, constraints
 
 
 def optimize(
@@ -248,6 +146,8 @@ def optimize(
     rigid, rigid_twist = None, None
     if problem.objective != "spar_mass":
         rigid, rigid_twist = _rigid_optimum(wing, problem, options, tolerance)
+    if problem.multipoint:
+        return optimize_cases(wing, problem, options, rigid, rigid_twist, tolerance)
     space = DesignSpace(wing, problem, options, rigid=False)
     start = np.zeros(space.n_design)
     if rigid_twist is not None:
@@ -256,7 +156,7 @@ def optimize(
         assert wing.spar is not None
         start[space.n_twist :] = wing.spar.wall_thickness
     v, info, constraints = _run_ipopt(space, problem, start, tolerance)
-    if not info.status.startswith("Solve_Succeeded") and "Acceptable" not in info.status:
+    if not succeeded(info):
         raise _infeasible(space, constraints, v, info)
     optimal_wing = space.design_wing(v)
     flight = FlightCondition(problem.velocity, problem.alpha, problem.density)
@@ -303,8 +203,7 @@ def optimize(
 
 def _efficiency(lift: float, problem: DesignProblem, wing: Wing, drag: float) -> float:
     """e = L^2 / (q pi b^2 D)."""
-    span = 2 * wing.semispan
-    return lift**2 / (problem.dynamic_pressure * math.pi * span**2 * drag)
+    return efficiency(lift, problem.dynamic_pressure, wing.semispan, drag)
 
 
 def _rigid_optimum(
@@ -314,7 +213,7 @@ def _rigid_optimum(
     rigid_problem = problem.for_the_rigid_wing()
     space = DesignSpace(wing, rigid_problem, options, rigid=True)
     v, info, constraints = _run_ipopt(space, rigid_problem, np.zeros(space.n_design), tolerance)
-    if not info.status.startswith("Solve_Succeeded") and "Acceptable" not in info.status:
+    if not succeeded(info):
         raise _infeasible(space, constraints, v, info)
     point = space.at(v)
     lift = float(point.values["lift"][0])
@@ -342,12 +241,10 @@ def _infeasible(
         return InfeasibleDesign(
             "lift", f"no equilibrium near the last design: {constraints.failure}"
         )
-    worst, excess = "optimizer", 0.0
-    for name, scale, lower, upper in constraints.entries:
-        value = point.values[name] / scale
-        violation = float(np.max(np.maximum(lower / scale - value, value - upper / scale)))
-        if violation > excess:
-            worst, excess = name, violation
+    index, excess = worst_violation(
+        (entry, point.values[entry[0]]) for entry in constraints.entries
+    )
+    worst = "optimizer" if index < 0 else constraints.entries[index][0]
     return InfeasibleDesign(
         worst,
         f"IPOPT stopped with {info.status} after {info.iterations} iterations"
@@ -356,64 +253,13 @@ def _infeasible(
     )
 
 
-def _station_of(name: str, index: int, y: np.ndarray) -> float | None:
-    """[m] where a constraint binds: its station, the tip for the tip heave, None for totals."""
-    if name == "tip_heave":
-        return float(y[-1])
-    if name in ("jig_twist", "von_mises"):
-        return float(y[index])
-    return None
-
-
 def _constraint_values(
     space: DesignSpace, constraints: _Constraints, point: DesignPoint, equilibrium: Equilibrium
 ) -> list[ConstraintValue]:
-    units = {
-        "lift": "N",
-        "root_twist_slope": "deg",
-        "jig_twist": "deg",
-        "tip_heave": "m",
-        "von_mises": "Pa",
-    }
-    out = []
-    y = space.wing.y
-    for name, scale, lower, upper in constraints.entries:
-        values = point.values[name]
-        # The station closest to a limit.
-        gaps = np.minimum(values - lower, upper - values)
-        worst = int(np.argmin(gaps))
-        active = bool(gaps[worst] <= _ACTIVE * scale) if np.isfinite(gaps[worst]) else False
-        value, low, high = float(values[worst]), lower[worst], upper[worst]
-        if name == "von_mises":
-            tube = equilibrium.wing.spar
-            assert tube is not None
-            allowable = tube.material.yield_stress / space.options.safety_factor
-            stresses = equilibrium.stations.von_mises_stress
-            assert stresses is not None
-            worst = int(np.argmax(stresses))
-            value, low, high = float(stresses[worst]), -np.inf, allowable
-            active = bool(high - value <= _ACTIVE * allowable)
-        out.append(
-            ConstraintValue(
-                name=name,  # type: ignore[arg-type]
-                value=value,
-                lower=None if not np.isfinite(low) else float(low),
-                upper=None if not np.isfinite(high) else float(high),
-                unit=units[name],
-                active=active,
-                y=_station_of(name, worst, y),
-            )
-        )
-    margin = equilibrium.stability.margin
-    limit = space.problem.max_stability_margin
-    out.append(
-        ConstraintValue(
-            name="stability_margin",
-            value=margin,
-            lower=None,
-            upper=limit,
-            unit="-",
-            active=bool(limit - margin <= _ACTIVE),
-        )
-    )
+    safety = space.options.safety_factor
+    out = [
+        constraint_value(entry, point.values[entry[0]], space.wing.y, equilibrium, safety)
+        for entry in constraints.entries
+    ]
+    out.append(stability_value(equilibrium, space.problem.max_stability_margin))
     return out

@@ -13,7 +13,7 @@ from solver.inputs.wing import Wing
 from solver.results.equilibrium import Equilibrium
 from solver.results.quantities import internal, quantity
 
-__all__ = ["ConstraintValue", "OptimalDesign", "OptimizerInfo", "RigidOptimum"]
+__all__ = ["ConstraintValue", "DesignCaseResult", "OptimalDesign", "OptimizerInfo", "RigidOptimum"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +35,12 @@ class ConstraintValue:
     unit: str = quantity("", "unit of value and limits")
     active: bool = quantity("", "at a limit (within 1e-6 of its scale): it shapes the optimum")
     y: float | None = quantity("m", "the station where it binds, or null", default=None)
+    case: str | None = quantity(
+        "",
+        "with load cases, the case it holds in ('flight': the design flight, else a load "
+        "case's name; null for the jig twist's bounds, which hold for all); null without",
+        default=None,
+    )
 
 
 @dataclass(frozen=True)
@@ -57,6 +63,30 @@ class RigidOptimum:
     span_efficiency: float = quantity("-", "L^2 / (q pi b^2 induced_drag)")
     trefftz_span_efficiency: float = quantity("-", "L^2 / (q pi b^2 trefftz_drag)")
     optimizer: OptimizerInfo = quantity("", "what IPOPT did")
+
+
+@dataclass(frozen=True, eq=False)
+class DesignCaseResult:
+    """One case of a multipoint design at the optimum, with the optimal wing's equilibrium.
+
+    Its flight as flown: the airspeed, the air, the load factor and lift, the angle of attack."""
+
+    name: str = quantity("", "'flight' (the design flight), or the load case's name")
+    velocity: float = quantity("m/s", "true airspeed")
+    density: float = quantity("kg/m^3", "the air's density")
+    load_factor: float = quantity("-", "n: the lift carried over the weight; 1 for a lift given")
+    lift: float = quantity("N", "the lift required (load_factor * weight, or the lift given)")
+    alpha: float = quantity(
+        "deg",
+        "the angle of attack: the design flight's fixed one (the twist trims it), a load "
+        "case's trimmed one",
+    )
+    max_von_mises_stress: float | None = quantity(
+        "Pa", "the spar's largest von Mises stress in this case, or null without spar"
+    )
+    equilibrium: Equilibrium = quantity(
+        "", "the optimal wing's equilibrium in this case, as /solve answers its flight"
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,3 +118,10 @@ class OptimalDesign:
         "", "the same problem's optimum for a rigid wing, or null (objective spar_mass)"
     )
     optimizer: OptimizerInfo = quantity("", "what IPOPT did")
+    cases: list[DesignCaseResult] | None = quantity(
+        "",
+        "with load cases: the design flight ('flight', first: the objective, drags and "
+        "efficiencies above are its) and every load case, each with the optimal wing's "
+        "equilibrium; null without",
+        default=None,
+    )

@@ -6,7 +6,8 @@ Nothing here names an operation, an option or a wing part: the factors of a case
 - the operation's own options, everywhere in its input but its wing, flight and airspeeds: each
   choice, each flag both ways, each small count (a range of at most 16) at its lowest and
   middle values, each optional nested input absent or at its defaults (or its example), each
-  optional number absent or at its example;
+  optional number, and each optional list of inputs (a design's load cases), absent or at its
+  example;
 - the wing's optional parts: every field of the wing with a default, absent or at its declared
   example (an optional field without an example is a declaration to complete, and fails here),
   always present where the operation's row says it `requires` it;
@@ -114,6 +115,8 @@ def _option_factors(cls: type, prefix: str) -> Iterator[Factor]:
                 yield path, [int(low), int((low + high) // 2)]
         elif spec.form == "number" and default is None and spec.example is not None:
             yield path, [None, spec.example]
+        elif spec.form == "items" and spec.example is not None:
+            yield path, [None, spec.example]  # an optional list of inputs, absent or its example
 
 
 def _wing_factors(requires: tuple[str, ...]) -> Iterator[Factor]:

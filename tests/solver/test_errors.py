@@ -2,9 +2,18 @@
 
 from __future__ import annotations
 
+import pickle
+
 import pytest
 
-from solver import ConvergenceError, InfeasibleDesign, InvalidInput, NoEquilibrium, SolverError
+from solver import (
+    ConvergenceError,
+    InfeasibleDesign,
+    InvalidInput,
+    NoEquilibrium,
+    OptimizerNotConverged,
+    SolverError,
+)
 
 
 def test_invalid_input_is_a_value_error_naming_field_and_reason():
@@ -38,3 +47,21 @@ def test_convergence_and_design_failures_carry_what_stopped_them():
 @pytest.mark.parametrize("error", [ConvergenceError, NoEquilibrium, InfeasibleDesign])
 def test_every_failure_of_a_valid_solve_is_a_solver_error(error: type[Exception]):
     assert issubclass(error, SolverError)
+
+
+def test_a_design_failure_names_its_case_and_crosses_processes_whole():
+    """A worker sends the error itself: pickled and back, every field as it was."""
+    infeasible = InfeasibleDesign("von_mises", "IPOPT stopped", 0.25, case="pull-up")
+    assert "von_mises in case 'pull-up'" in str(infeasible)
+    again = pickle.loads(pickle.dumps(infeasible))
+    assert (again.constraint, again.violation, again.case) == ("von_mises", 0.25, "pull-up")
+    assert InfeasibleDesign("lift", "no equilibrium").case is None  # a single-point problem's
+
+
+def test_an_optimizer_stopped_at_its_limit_is_a_convergence_error_not_an_infeasible_design():
+    stopped = OptimizerNotConverged(14.0, 500, 2e-3, "IPOPT stopped with its limit")
+    assert isinstance(stopped, ConvergenceError) and not isinstance(stopped, InfeasibleDesign)
+    assert str(stopped).startswith("the design optimizer did not converge")
+    assert "after 500 iterations" in str(stopped) and "Newton" not in str(stopped)
+    again = pickle.loads(pickle.dumps(stopped))
+    assert type(again) is OptimizerNotConverged and str(again) == str(stopped)

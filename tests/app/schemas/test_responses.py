@@ -242,6 +242,7 @@ ANSWERED = [
     ("sweep", "at_its_weight"),
     ("optimize", "study"),
     ("optimize", "aerosandbox_reference"),
+    ("optimize", "multipoint"),
     ("flutter", "goland"),
     ("flutter", "goland_lattice"),
     ("flutter", "study_loaded"),

@@ -17,6 +17,10 @@ import pytest
 import solver
 from solver.inputs.design import DESIGN_FLIGHT_RULE
 
+_LOAD_CASE = solver.DesignLoadCase(
+    "pull-up", solver.FlightCondition(12.0, weight=300.0, load_factor=2.5)
+)
+
 REFUSED: dict[str, tuple[Callable[[], object], str]] = {
     # the design flight
     "no airspeed": (lambda: solver.DesignCondition(0.0, lift=300.0), "velocity"),
@@ -69,6 +73,33 @@ REFUSED: dict[str, tuple[Callable[[], object], str]] = {
             solver.DesignCondition(12.0, lift=300.0), objective="spar_mass"
         ),
         "objective",
+    ),
+    # the load cases
+    "a load case at a given alpha": (
+        lambda: solver.DesignLoadCase("pull-up", solver.FlightCondition(12.0, 5.0)),
+        "flight",
+    ),
+    "a load case without an airspeed": (
+        lambda: solver.DesignLoadCase("pull-up", solver.FlightCondition(weight=300.0)),
+        "flight",
+    ),
+    "a load case named as the design flight": (
+        lambda: solver.DesignLoadCase("flight", solver.FlightCondition(12.0, weight=300.0)),
+        "name",
+    ),
+    "two load cases of one name": (
+        lambda: solver.DesignProblem(
+            solver.DesignCondition(12.0, lift=300.0),
+            load_cases=(_LOAD_CASE, _LOAD_CASE),
+        ),
+        "load_cases[1].name",
+    ),
+    "a load case that is not one": (
+        lambda: solver.DesignProblem(
+            solver.DesignCondition(12.0, lift=300.0),
+            load_cases=(solver.FlightCondition(12.0, weight=300.0),),  # type: ignore[arg-type]
+        ),
+        "load_cases[0]",
     ),
 }
 
@@ -195,3 +226,11 @@ def test_the_rigid_wings_problem_is_the_twist_alone_without_a_tip_heave_limit(
 def test_the_rigid_wings_problem_of_a_twist_problem_is_the_same_problem() -> None:
     problem = solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0))
     assert problem.for_the_rigid_wing() == problem
+
+
+def test_load_cases_make_the_problem_multipoint_and_the_rigid_wing_flies_the_design_flight():
+    problem = _problem(load_cases=[_LOAD_CASE])
+    assert problem.load_cases == (_LOAD_CASE,)  # a list is taken as the tuple it means
+    assert problem.multipoint and not _problem().multipoint
+    assert _LOAD_CASE.inertial_load_factor == 2.5
+    assert problem.for_the_rigid_wing().load_cases == ()

@@ -240,3 +240,25 @@ def test_under_strip_theory_induced_drag_is_the_far_fields_and_its_optimum_nearl
     assert design.rigid is not None
     assert design.rigid.trefftz_span_efficiency == pytest.approx(1.0, abs=0.025)
     assert design.equilibrium.totals.lift == pytest.approx(300.0, rel=1e-6)
+
+
+def test_without_load_cases_the_single_point_problem_is_solved_as_before(monkeypatch):
+    """No load cases, none given or an empty list: the single-point problem, never the
+    multipoint one (whose answers differ in the last digits), and its answer without a case.
+    The same computation twice gives the same bits (deterministic: IPOPT, Newton, one process).
+    That the single-point answers are those of the code before the multipoint design, field by
+    field to the last digit, was checked on six problems (docs/accuracy.md)."""
+    import solver.optimization.optimize as single_point
+
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the multipoint problem ran for a single-point one")
+
+    monkeypatch.setattr(single_point, "optimize_cases", refuse)
+    problem = solver.DesignProblem(solver.DesignCondition(12.0, lift=300.0))
+    given = solver.optimize(study_wing(), problem)
+    empty = solver.optimize(study_wing(), dataclasses.replace(problem, load_cases=[]))
+    assert np.array_equal(given.jig_twist, empty.jig_twist)
+    assert given.induced_drag == empty.induced_drag
+    assert np.array_equal(given.equilibrium.state, empty.equilibrium.state)
+    for answer in (given, empty):
+        assert answer.cases is None and all(c.case is None for c in answer.constraints)
