@@ -19,7 +19,14 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope
 
-from solver import ConvergenceError, InfeasibleDesign, InvalidInput, NoEquilibrium, SolverError
+from solver import (
+    ConvergenceError,
+    DynamicInstability,
+    InfeasibleDesign,
+    InvalidInput,
+    NoEquilibrium,
+    SolverError,
+)
 
 __all__ = [
     "PROBLEM_MEDIA_TYPE",
@@ -87,6 +94,14 @@ PROBLEM_TYPES = _types(
         "The design problem has no acceptable optimum: `constraint` names the constraint that "
         "could not be met (lift, jig_twist, von_mises, tip_heave, stability_margin) or "
         "`optimizer` when IPOPT failed otherwise. Relax it, or give the design more freedom.",
+    ),
+    ProblemType(
+        "unstable",
+        "Dynamically unstable",
+        422,
+        "The wing flutters or diverges at this airspeed: its linear aeroelastic system has a "
+        "growing root (`growth_rate` [1/s], `frequency` [rad/s], 0 for divergence), so a gust "
+        "has no bounded response. Fly slower, or stiffen the wing.",
     ),
     ProblemType(
         "body-too-large",
@@ -207,6 +222,15 @@ SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
     ),
     InfeasibleDesign: lambda e: Problem(
         "infeasible-design", str(e), extensions={"constraint": e.constraint}
+    ),
+    DynamicInstability: lambda e: Problem(
+        "unstable",
+        str(e),
+        extensions={
+            "velocity": e.velocity,
+            "growth_rate": e.growth_rate,
+            "frequency": e.frequency,
+        },
     ),
 }
 

@@ -32,12 +32,14 @@ from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.dynamics.modes import natural_modes
 from solver.errors import (
     ConvergenceError,
+    DynamicInstability,
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
     SolverError,
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
+from solver.gusts.analysis import gust_analysis, gust_load_cases
 from solver.inputs.airfoil import MAX_CAMBER
 from solver.inputs.atmosphere import (
     Air,
@@ -64,6 +66,7 @@ from solver.inputs.flight import (
     OperatingPoint,
     VelocityRange,
 )
+from solver.inputs.gust import GustSettings
 from solver.inputs.load_case import FlightCase
 from solver.inputs.mass import ConcentratedMass, MassModel
 from solver.inputs.options import InitialGuess, SolverOptions, ValidityLimits
@@ -75,6 +78,7 @@ from solver.numerics.warm import is_compiled, warm_up
 from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
+from solver.operations.gust import GustInput
 from solver.operations.sizing import CaseInput, LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation, SpreadInput
@@ -111,6 +115,7 @@ from solver.results.flutter import (
     NaturalModes,
     NoFlutter,
 )
+from solver.results.gusts import GustCase, GustLoadCase, GustResult, TurbulenceLoads
 from solver.results.quantities import Progress
 from solver.results.sizing import (
     CaseLoads,
@@ -171,6 +176,15 @@ __all__ = [
     "control_effectiveness",
     "control_sweep",
     "ConvergenceError",
+    "DynamicInstability",
+    "GustCase",
+    "GustInput",
+    "GustLoadCase",
+    "GustResult",
+    "GustSettings",
+    "TurbulenceLoads",
+    "gust_analysis",
+    "gust_load_cases",
     "Design",
     "DesignCondition",
     "DesignConstraints",

@@ -1,0 +1,101 @@
+"""What a gust analysis asks (`GustSettings`): the regulation's gust at which speed and
+altitude, the gradients searched for the tuned gust, the flight profile alleviation, the modes
+kept, the clamped option and continuous turbulence, each field declared once
+(`solver.fields`). The gusts themselves are `solver.gusts.profiles`'s (CS-25.341)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from solver import fields
+from solver.errors import InvalidInput
+from solver.fields import parameter
+from solver.inputs.atmosphere import ALTITUDE_LIMITS
+
+__all__ = ["GustSettings"]
+
+_GRADIENT: dict[str, Any] = {
+    "ge": 0.1,
+    "le": 10_000.0,
+    "why": "a tenth of a metre to ten kilometres",
+}
+
+
+@dataclass(frozen=True)
+class GustSettings:
+    """The gusts to fly through. Values outside CS-25.341's ranges (gradients outside 9 to
+    107 m) are answered, and said so in the answer's `findings`."""
+
+    altitude: float = parameter(
+        "m",
+        "altitude of U_ref and U_sigma_ref (CS-25.341(a)(5), (b)(3)); the air's density is "
+        "the flight's",
+        ge=ALTITUDE_LIMITS.ge,
+        le=ALTITUDE_LIMITS.le,
+        why=ALTITUDE_LIMITS.why,
+        default=0.0,
+    )
+    speed: Literal["cruise", "dive"] = parameter(
+        "",
+        "the design speed the flight is at: cruise (V_C, the full gust) or dive (V_D, half)",
+        form="choice",
+        choices=("cruise", "dive"),
+        default="cruise",
+    )
+    alleviation: float = parameter(
+        "-",
+        "F_g, the flight profile alleviation factor (CS-25.341(a)(6)); 1: none",
+        ge=0.01,
+        le=1.0,
+        why="the regulation's factor lies between 0 and 1",
+        default=1.0,
+    )
+    min_gradient: float = parameter(
+        "m", "shortest gust gradient H searched (CS-25.341(a): 9)", **_GRADIENT, default=9.0
+    )
+    max_gradient: float = parameter(
+        "m", "longest gust gradient H searched (CS-25.341(a): 107)", **_GRADIENT, default=107.0
+    )
+    gradients: int = parameter(
+        "-",
+        "how many gradients, evenly spaced from min_gradient to max_gradient (the tuned "
+        "gust's search)",
+        ge=1,
+        le=100,
+        why="one gust to a fine search",
+        form="integer",
+        default=20,
+    )
+    modes: int = parameter(
+        "-",
+        "the wing's lowest natural modes kept (at most 2 (N - 1))",
+        ge=1,
+        le=1000,
+        why="one mode to every degree of freedom of the largest mesh",
+        form="integer",
+        default=4,
+    )
+    clamped: bool = parameter(
+        "", "hold the root (no plunge): a wind-tunnel model", form="flag", default=False
+    )
+    turbulence: bool = parameter(
+        "",
+        "also continuous turbulence (CS-25.341(b)): A-bar and its design loads",
+        form="flag",
+        default=True,
+    )
+
+    def __post_init__(self) -> None:
+        for name, spec in fields.specs(GustSettings).items():
+            value = getattr(self, name)
+            if spec.form == "number":
+                fields.number(name, value, spec)
+            elif spec.form == "integer":
+                fields.integer(name, value, spec)
+            elif spec.form == "flag" and not isinstance(value, bool):
+                raise InvalidInput(name, "must be true or false")
+            elif spec.form == "choice" and value not in spec.choices:
+                raise InvalidInput(name, "must be one of " + ", ".join(map(repr, spec.choices)))
+        if self.max_gradient < self.min_gradient:
+            raise InvalidInput("max_gradient", "must not be below min_gradient")
