@@ -13,7 +13,7 @@ on A's eigenvectors, x = V xi (each a causal convolution, by FFT):
     P0 = (e^{lambda h} - 1) / lambda,  P1 = (e^{lambda h} - 1 - lambda h) / (lambda^2 h),
 
 beta = V^{-1} B g, exact for any step. Sampling sets what a peak between samples loses: the
-step is a 30th of the gust and an 8th of the period of the fastest mode the gust excites
+step is a 100th of the gust and an 8th of the period of the fastest mode the gust excites
 dynamically (modes ten times faster than the gust's own frequency follow it quasi-statically),
 and each peak is the vertex of the parabola through its sample and its neighbours (an error of
 order (pi / 8)^4 of that mode's share, against 1 - cos(pi / 8) = 7.6 % read off the samples);
@@ -34,7 +34,7 @@ from solver.gusts.model import GustModel
 __all__ = ["DiscreteResponse", "discrete_response", "kuessner_lagged_gust", "peaks", "time_grid"]
 
 _PER_PERIOD = 8
-_PER_GUST = 30
+_PER_GUST = 100
 _QUASI_STATIC = 10.0
 _SMALL = 1e-6  # |lambda h| below which P0 and P1 are their series
 
