@@ -1,0 +1,56 @@
+"""Continuous turbulence in the frequency domain: the rigid section's transfer function is
+Sears' (within Sears and Sparks' fit), the zero-frequency limit is the time domain's very long
+gust, and A-bar scales as the spectrum says."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.special
+
+import solver
+from solver.dynamics.unsteady import theodorsen
+from solver.gusts.discrete import discrete_response, peaks
+from solver.gusts.model import gust_model
+from solver.gusts.turbulence import a_bar, frequency_response
+from tests.solver.gusts.wings import RHO, STRIP, STUDY_FLIGHT, rectangle, study
+
+V = 100.0
+
+
+def test_a_rigid_section_in_a_sinusoidal_gust_follows_sears_function() -> None:
+    wing = rectangle()
+    model = gust_model(wing, solver.FlightCondition(V, density=RHO, weight=1e5), STRIP, 2, True)
+    b = 0.5
+    k = np.linspace(0.02, 1.0, 50)
+    lift = frequency_response(model, k * V / b)[0]  # root shear per unit gust velocity
+    quasi_steady = 0.5 * RHO * V**2 * model.lift_slope * model.area / V
+    sears = (scipy.special.j0(k) - 1j * scipy.special.j1(k)) * theodorsen(
+        k
+    ) + 1j * scipy.special.j1(k)
+    # Amplitudes: Sears and Sparks' fit, within 6 % (test_indicial).
+    assert np.abs(np.abs(lift) / quasi_steady / np.abs(sears) - 1).max() < 0.06
+
+
+def test_the_zero_frequency_response_is_the_very_long_gusts() -> None:
+    model = gust_model(study(), STUDY_FLIGHT, STRIP, 3, clamped=True)
+    steady = frequency_response(model, np.array([1e-6]))[:, 0]
+    assert np.abs(steady.imag).max() < 1e-4 * np.abs(steady).max()
+    long = peaks(discrete_response(model, 5000.0, 1.0).outputs)[0]
+    n = model.wing.n_stations
+    for i in (0, n, 3 * n):
+        assert long[i] == pytest.approx(steady[i].real, rel=1e-3)
+
+
+def test_a_bar_is_the_rms_of_the_response_to_unit_turbulence() -> None:
+    # A white-noise check: the same response with the spectrum doubled doubles A-bar^2; here
+    # through the velocity (Phi scales as 1/V at low frequency): A-bar is positive and finite,
+    # the load factor's below the sharp-edged gust's increment per m/s.
+    model = gust_model(study(), STUDY_FLIGHT, None, 3)
+    values = a_bar(model)
+    assert np.all(np.isfinite(values))
+    n_bar = values[model.output_slices["load_factor"]]
+    sharp = 2 * 0.5 * STUDY_FLIGHT.density * STUDY_FLIGHT.velocity * model.lift_slope * model.area
+    assert 0 < n_bar < sharp / STUDY_FLIGHT.weight * math.sqrt(2)
