@@ -66,7 +66,7 @@ from solver.inputs.flight import (
     OperatingPoint,
     VelocityRange,
 )
-from solver.inputs.gust import GustSettings
+from solver.inputs.gust import GustCondition, GustSettings
 from solver.inputs.load_case import FlightCase
 from solver.inputs.mass import ConcentratedMass, MassModel
 from solver.inputs.options import InitialGuess, SolverOptions, ValidityLimits
@@ -79,7 +79,7 @@ from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
 from solver.operations.gust import GustInput
-from solver.operations.sizing import CaseInput, LoadsInput
+from solver.operations.sizing import CaseInput, GustCaseInput, LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation, SpreadInput
 from solver.optimization.optimize import optimize
@@ -178,6 +178,8 @@ __all__ = [
     "ConvergenceError",
     "DynamicInstability",
     "GustCase",
+    "GustCaseInput",
+    "GustCondition",
     "GustInput",
     "GustLoadCase",
     "GustResult",

@@ -113,6 +113,7 @@ def gust_analysis(
         equivalent_airspeed=eas,
         density=model.density,
         weight=model.weight,
+        alpha=model.equilibrium.totals.alpha,
         clamped=model.clamped,
         reference_velocity=reference,
         alleviation=settings.alleviation,

@@ -12,8 +12,9 @@ from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter
 from solver.inputs.atmosphere import ALTITUDE_LIMITS
+from solver.inputs.flight import FlightCondition
 
-__all__ = ["GustSettings"]
+__all__ = ["GustCondition", "GustSettings"]
 
 _GRADIENT: dict[str, Any] = {
     "ge": 0.1,
@@ -99,3 +100,32 @@ class GustSettings:
                 raise InvalidInput(name, "must be one of " + ", ".join(map(repr, spec.choices)))
         if self.max_gradient < self.min_gradient:
             raise InvalidInput("max_gradient", "must not be below min_gradient")
+
+
+@dataclass(frozen=True)
+class GustCondition:
+    """A flight whose gust loads join a loads envelope (`solver.operations.sizing.LoadsInput`
+    `gusts`): the flexible wing's 1-cos gusts at `flight`, total loads up and down."""
+
+    name: str = parameter(
+        "",
+        "the condition's name; the envelope's cases are '<name> up' and '<name> down'",
+        form="text",
+        le=80,
+        example="V_C gusts",
+    )
+    flight: FlightCondition = parameter(
+        "",
+        "the flight: airspeed, density, the aircraft's weight (trimmed to it)",
+        form="nested",
+        given=FlightCondition,
+    )
+    gust: GustSettings | None = parameter(
+        "", "optional gust settings", form="nested", given=GustSettings, default=None
+    )
+
+    def __post_init__(self) -> None:
+        if self.flight.weight is None or self.flight.velocity is None:
+            raise InvalidInput(
+                "flight.weight", "a gust condition flies at an airspeed, trimmed to a weight"
+            )

@@ -84,6 +84,7 @@ class GustResult:
     equivalent_airspeed: float = quantity("m/s", "equivalent airspeed")
     density: float = quantity("kg/m^3", "the air's density")
     weight: float = quantity("N", "the aircraft's weight")
+    alpha: float = quantity("deg", "the 1 g trimmed angle of attack linearised about")
     clamped: bool = quantity("", "the root held (no plunge): a wind-tunnel model")
     reference_velocity: float = quantity("m/s", "U_ref (EAS), halved at V_D")
     alleviation: float = quantity("-", "F_g, the flight profile alleviation factor")
