@@ -19,7 +19,8 @@ drops the plunge (a wind-tunnel model on its balance).
 Aerodynamics (`solver.dynamics.unsteady`, as flutter's "strip" and "lattice"): the static
 model's exact Jacobian at the trimmed state gives the quasi-steady circulations of each panel's
 normalwash nu (its three-quarter-chord upwash per unit V: the deformation's angle, the motion's
--h'/V, the gust's w_g / V), Gamma = -T_g^{-1} nu (T_g the lattice's influence, or strip theory's
+-h'/V, the gust's w_g / V on the deformed panel's normal: the static model's own derivative in
+alpha, a bent wing's dihedral included), Gamma = -T_g^{-1} nu (T_g the lattice's influence, or strip theory's
 2D one), and their loads q K_g Gamma on the strips. Lagged in time:
 
 - the motion's normalwash (elastic and plunge) through Wagner's function, R. T. Jones'
@@ -137,10 +138,11 @@ def gust_model(
 ) -> GustModel:
     """The gust model of `wing` (with its mass) in `flight` (trimmed to a weight: the
     aircraft's), linearised about the 1 g trim (or `flight`'s load factor), on its lowest
-    `modes` natural modes (None: all). Raises `InvalidInput` without a weight or a mass,
-    `NoEquilibrium`/`ConvergenceError` when the trim has no equilibrium."""
+    `modes` natural modes (None: all); `clamped` at an angle of attack as well (a wind-tunnel
+    model: n is then the lift against the equilibrium's). Raises `InvalidInput` without a
+    weight (free) or a mass, `NoEquilibrium`/`ConvergenceError` without an equilibrium."""
     options = options or SolverOptions()
-    if flight.weight is None or flight.velocity is None:
+    if (flight.weight is None and not clamped) or flight.velocity is None:
         raise InvalidInput("flight.weight", "a gust analysis needs the aircraft's weight")
     if options.aerodynamics == "unsteady_lattice":
         raise InvalidInput(
@@ -151,17 +153,24 @@ def gust_model(
     beam = structure(wing)
     equilibrium = solve(wing, flight, options=options)
     system = CoupledSystem.of(wing, equilibrium.totals.alpha, options)
-    evaluation = system.evaluate(equilibrium.state)
+    evaluation, alpha_terms = system.evaluate_with_alpha(equilibrium.state)
     layout = system.layout
     aero = unsteady_aerodynamics(beam, layout, evaluation)
     influence = evaluation.jacobian0[layout.tangency_rows, layout.circulation]
-    return _assemble(beam, aero, influence, layout.chordwise, flight, equilibrium, modes, clamped)
+    # A vertical velocity w meets each panel as the stream turned by w / V: the tangency
+    # rows' derivative in alpha (per radian) is its normalwash, the deformed panel's normal
+    # (a bent wing's dihedral: cos of its slope) included.
+    vertical = alpha_terms.r0[layout.tangency_rows] * DEG_PER_RAD
+    return _assemble(
+        beam, aero, influence, vertical, layout.chordwise, flight, equilibrium, modes, clamped
+    )
 
 
 def _assemble(
     beam: Structure,
     aero: UnsteadyAerodynamics,
     influence: np.ndarray,
+    vertical: np.ndarray,
     chordwise: int,
     flight: FlightCondition,
     equilibrium: Equilibrium,
@@ -170,7 +179,9 @@ def _assemble(
 ) -> GustModel:
     wing = beam.wing
     velocity, density = float(flight.velocity or 0.0), flight.density
-    weight = float(flight.weight or 0.0)
+    # Clamped at an angle of attack (a wind-tunnel model): the load factor is the lift's
+    # increment against the lift the equilibrium carries (both halves).
+    weight = float(flight.weight or abs(2 * equilibrium.stations.shear[0]) or 1.0)
     q = dynamic_pressure(density, velocity)
     m, n_dof = beam.n_strips, beam.n_dof
     r = n_dof if modes is None else min(modes, n_dof)
@@ -183,7 +194,7 @@ def _assemble(
     loads_of_wash = -np.linalg.solve(influence.T, aero.circulation_loads.T).T
     wash_of_c = -influence @ aero.deformation @ basis
     wash_of_rate = -influence @ aero.motion @ basis / velocity
-    wash_of_plunge = -np.ones(panels) / velocity  # per unit z'
+    wash_of_plunge = -vertical / velocity  # per unit z'
     geometric = aero.geometric @ basis
     apparent_mass = aero.apparent_mass @ basis
     apparent_damping = aero.apparent_damping @ basis
@@ -214,7 +225,7 @@ def _assemble(
     loads_x = q * loads_of_wash @ lagged
     loads_x[:, c_of] += q * geometric
     loads_x[:, rate_of] += density * velocity * apparent_damping
-    loads_g = q * loads_of_wash @ to_panels
+    loads_g = q * loads_of_wash @ (vertical[:, None] * to_panels)
 
     # Accelerations a = (c'', z''): mass a = forces.
     acc = r + p
