@@ -20,8 +20,8 @@ Aerodynamics (`solver.dynamics.unsteady`, as flutter's "strip" and "lattice"): t
 model's exact Jacobian at the trimmed state gives the quasi-steady circulations of each panel's
 normalwash nu (its three-quarter-chord upwash per unit V: the deformation's angle, the motion's
 -h'/V, the gust's w_g / V on the deformed panel's normal: the static model's own derivative in
-alpha, a bent wing's dihedral included), Gamma = -T_g^{-1} nu (T_g the lattice's influence, or strip theory's
-2D one), and their loads q K_g Gamma on the strips. Lagged in time:
+alpha, a bent wing's dihedral included), Gamma = -T_g^{-1} nu (T_g the lattice's influence, or
+strip theory's 2D one), and their loads q K_g Gamma on the strips. Lagged in time:
 
 - the motion's normalwash (elastic and plunge) through Wagner's function, R. T. Jones'
   approximation, two states per panel with its strip's semichord (`solver.gusts.indicial`);
