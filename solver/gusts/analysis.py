@@ -36,6 +36,8 @@ from solver.sizing.gusts import gust_alleviation_factor, gust_mass_ratio, sharp_
 __all__ = ["gust_analysis", "gust_load_cases"]
 
 _HISTORY = 200  # samples kept of each time history
+# [rad] a gust angle past which attached, linear lift is no longer a fair model (~10 deg).
+_LINEAR_ANGLE = 0.17
 
 
 def gust_analysis(
@@ -132,7 +134,7 @@ def gust_analysis(
         tuned_torque=int(np.argmax(root_torque)),
         envelope=envelope,
         turbulence=turbulence,
-        findings=_findings(settings),
+        findings=_findings(settings, max(c.gust_velocity for c in cases) / model.velocity),
         solve_time=time.perf_counter() - started,
     )
 
@@ -174,9 +176,17 @@ def _case(
     )
 
 
-def _findings(settings: GustSettings) -> list[str]:
+def _findings(settings: GustSettings, gust_angle: float) -> list[str]:
+    """What the answer says of itself: gusts outside the regulation's gradients, a clamped
+    root, gust angles past linear aerodynamics (the model is linear in the gust)."""
     low, high = GRADIENT_RANGE
     findings = []
+    if gust_angle > _LINEAR_ANGLE:
+        findings.append(
+            f"largest gust angle U_ds / V = {gust_angle:.3g} rad: past the linear "
+            f"aerodynamics (about {_LINEAR_ANGLE:g} rad; a real wing may stall), the loads "
+            "scale linearly with the gust"
+        )
     if settings.min_gradient < low or settings.max_gradient > high:
         findings.append(
             f"gust gradients outside CS-25.341(a)'s {low:g} to {high:g} m: answered, outside "
