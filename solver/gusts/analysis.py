@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from solver.gusts.discrete import DiscreteResponse, discrete_response, peaks
+from solver.gusts.discrete import DiscreteResponse, discrete_response, peaks, profile_response
 from solver.gusts.model import GustModel, gust_model
 from solver.gusts.profiles import (
     GRADIENT_RANGE,
@@ -70,7 +70,18 @@ def gust_analysis(
         high, low = peaks(response.outputs)
         upper = np.maximum(upper, np.maximum(high[: 3 * n], -low[: 3 * n]))
         lower = np.minimum(lower, np.minimum(low[: 3 * n], -high[: 3 * n]))
-        cases.append(_case(model, response, high, low, gradient, amplitude, eas))
+        name = f"1-cos H = {gradient:.3g} m up at {eas:.4g} m/s EAS"
+        cases.append(_case(model, response, high, low, name))
+    profile = None
+    if settings.profile_time is not None and settings.profile_velocity is not None:
+        response = profile_response(
+            model, np.array(settings.profile_time), np.array(settings.profile_velocity)
+        )
+        high, low = peaks(response.outputs)
+        # A given gust is answered as given (not mirrored: it need not be symmetric).
+        upper = np.maximum(upper, high[: 3 * n])
+        lower = np.minimum(lower, low[: 3 * n])
+        profile = _case(model, response, high, low, f"given profile at {eas:.4g} m/s EAS")
     root_moment = [float(case.max_bending_moment[0]) for case in cases]
     root_torque = [max(abs(case.max_torque[0]), abs(case.min_torque[0])) for case in cases]
     tuned_n = int(np.argmax([case.max_load_factor for case in cases]))
@@ -129,6 +140,7 @@ def gust_analysis(
         one_g_bending_moment=stations.bending_moment,
         one_g_torque=stations.torque,
         gusts=cases,
+        profile=profile,
         tuned_load_factor=tuned_n,
         tuned_bending_moment=int(np.argmax(root_moment)),
         tuned_torque=int(np.argmax(root_torque)),
@@ -144,9 +156,7 @@ def _case(
     response: DiscreteResponse,
     high: np.ndarray,
     low: np.ndarray,
-    gradient: float,
-    amplitude: float,
-    eas: float,
+    name: str,
 ) -> GustCase:
     n = model.wing.n_stations
     s = model.output_slices
@@ -154,9 +164,9 @@ def _case(
     keep = np.unique(np.linspace(0, times.size - 1, min(_HISTORY, times.size)).astype(int))
     nf, th, tw = s["load_factor"], s["tip_heave"], s["tip_twist"]
     return GustCase(
-        name=f"1-cos H = {gradient:.3g} m up at {eas:.4g} m/s EAS",
-        gradient=float(gradient),
-        gust_velocity=float(amplitude),
+        name=name,
+        gradient=float(response.gradient),
+        gust_velocity=float(response.amplitude),
         max_load_factor=1.0 + float(high[nf]),  # type: ignore[index]
         min_load_factor=1.0 + float(low[nf]),  # type: ignore[index]
         max_shear=high[:n],

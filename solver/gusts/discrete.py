@@ -31,7 +31,14 @@ import scipy.signal
 from solver.gusts.indicial import KUESSNER
 from solver.gusts.model import GustModel
 
-__all__ = ["DiscreteResponse", "discrete_response", "kuessner_lagged_gust", "peaks", "time_grid"]
+__all__ = [
+    "DiscreteResponse",
+    "discrete_response",
+    "kuessner_lagged_gust",
+    "peaks",
+    "profile_response",
+    "time_grid",
+]
 
 _PER_PERIOD = 8
 _PER_GUST = 100
@@ -99,10 +106,44 @@ def discrete_response(
     """The outputs' time histories for the 1-cos gust of gradient H [m] and peak velocity
     [m/s TAS] (`DiscreteResponse`). The model must be stable (`check_stable`)."""
     time = time_grid(model, gradient, refine)
+    lagged = kuessner_lagged_gust(model, time, np.array([gradient]), np.array([amplitude]))
+    return DiscreteResponse(time, _respond(model, time, lagged[:, :, 0]), gradient, amplitude)
+
+
+def profile_response(model: GustModel, times: np.ndarray, velocity: np.ndarray) -> DiscreteResponse:
+    """The outputs' time histories for a gust of your own: vertical velocity [m/s TAS] at
+    `times` [s] (from its reaching the foremost leading edge), linear between them and zero
+    after the last. Kuessner's states filter each strip's delayed gust exactly for its
+    piecewise-linear samples (first-order hold on the grid); the grid's step is a tenth of the
+    profile's shortest interval and an 8th of the fastest mode's period, at most 20,000."""
+    times, velocity = np.asarray(times, dtype=float), np.asarray(velocity, dtype=float)
+    slowest = 2 * math.pi / float(model.frequencies.min())
+    fastest = 2 * math.pi / float(model.frequencies.max())
+    end = float(model.delay.max()) + float(times[-1]) + 2 * slowest
+    step = max(min(float(np.diff(times).min()) / 10, fastest / _PER_PERIOD), end / 20_000)
+    time = np.linspace(0.0, end, math.ceil(end / step) + 1)
     h = float(time[1] - time[0])
-    lagged = kuessner_lagged_gust(model, time, np.array([gradient]), np.array([amplitude]))[
-        :, :, 0
-    ]  # (m, T)
+    local = time[None, :] - model.delay[:, None]  # (m, T)
+    angle = np.interp(local, times, velocity, left=0.0, right=0.0) / model.velocity
+    angle[local > times[-1]] = 0.0
+    poles = KUESSNER.poles(model.velocity, model.semichord)
+    weights = KUESSNER.output_weights(model.velocity, model.semichord)
+    lagged = KUESSNER.direct * angle
+    for j in range(poles.shape[0]):
+        for i in range(poles.shape[1]):
+            decay = math.exp(-poles[j, i] * h)
+            p0 = (1 - decay) / poles[j, i]
+            p1 = (decay - 1 + poles[j, i] * h) / (poles[j, i] ** 2 * h)
+            # y_{k+1} = e y_k + (p0 - p1) u_k + p1 u_{k+1}: an IIR filter of order one.
+            state = scipy.signal.lfilter([p1, p0 - p1], [1.0, -decay], angle[j])
+            lagged[j] += weights[j, i] * state
+    return DiscreteResponse(time, _respond(model, time, lagged), 0.0, float(np.abs(velocity).max()))
+
+
+def _respond(model: GustModel, time: np.ndarray, lagged: np.ndarray) -> np.ndarray:
+    """(n_out, T) the outputs of the strips' lagged gust angles `lagged` (m, T) sampled at
+    `time` (T,) [s], evenly spaced from 0, the system at rest at 0 (module docstring)."""
+    h = float(time[1] - time[0])
     roots, vectors, inverse = model.eigen
     drive = (inverse @ model.b) @ lagged  # (S, T)
     step = roots * h
@@ -116,8 +157,7 @@ def discrete_response(
     forcing[:, 1:] = (p0 - p1) * drive[:, :-1] + p1 * drive[:, 1:]
     kernel = np.exp(np.outer(step, np.arange(time.size)))
     xi = scipy.signal.fftconvolve(kernel, forcing, axes=1)[:, : time.size]
-    outputs = (model.c @ vectors @ xi).real + model.d @ lagged
-    return DiscreteResponse(time, outputs, gradient, amplitude)
+    return np.asarray((model.c @ vectors @ xi).real + model.d @ lagged)
 
 
 def peaks(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -80,6 +80,28 @@ class GustSettings:
     clamped: bool = parameter(
         "", "hold the root (no plunge): a wind-tunnel model", form="flag", default=False
     )
+    profile_time: tuple[float, ...] | None = parameter(
+        "s",
+        "a gust of your own: times from the moment the gust reaches the wing's foremost "
+        "leading edge, increasing, 2 to 2000 values (with profile_velocity)",
+        ge=0.0,
+        le=3600.0,
+        why="up to an hour of flight",
+        form="values",
+        default=None,
+        example=[0.0, 0.5, 1.0],
+    )
+    profile_velocity: tuple[float, ...] | None = parameter(
+        "m/s",
+        "its vertical velocity (TAS, up positive) at each time, linear between them and zero "
+        "after the last (with profile_time)",
+        ge=-200.0,
+        le=200.0,
+        why="past any atmospheric gust",
+        form="values",
+        default=None,
+        example=[0.0, 5.0, 0.0],
+    )
     turbulence: bool = parameter(
         "",
         "also continuous turbulence (CS-25.341(b)): A-bar and its design loads",
@@ -98,6 +120,20 @@ class GustSettings:
                 raise InvalidInput(name, "must be true or false")
             elif spec.form == "choice" and value not in spec.choices:
                 raise InvalidInput(name, "must be one of " + ", ".join(map(repr, spec.choices)))
+            elif spec.form == "values" and value is not None:
+                values = tuple(fields.stations(name, value, None, spec).tolist())
+                object.__setattr__(self, name, values)
+        if (self.profile_time is None) != (self.profile_velocity is None):
+            raise InvalidInput(
+                "profile_velocity", "give profile_time and profile_velocity together"
+            )
+        if self.profile_time is not None and self.profile_velocity is not None:
+            if not 2 <= len(self.profile_time) <= 2000:
+                raise InvalidInput("profile_time", "must have 2 to 2000 values")
+            if len(self.profile_velocity) != len(self.profile_time):
+                raise InvalidInput("profile_velocity", "must have as many values as profile_time")
+            if any(b <= a for a, b in zip(self.profile_time, self.profile_time[1:], strict=False)):
+                raise InvalidInput("profile_time", "must increase")
         if self.max_gradient < self.min_gradient:
             raise InvalidInput("max_gradient", "must not be below min_gradient")
 

@@ -23,8 +23,8 @@ class GustCase:
     """The response to one 1-cos up gust."""
 
     name: str = quantity("", "the case's name ('1-cos H = 52 m up at 12 m/s')")
-    gradient: float = quantity("m", "the gust gradient H (half its length)")
-    gust_velocity: float = quantity("m/s", "U_ds as a true airspeed: the gust's peak")
+    gradient: float = quantity("m", "the gust gradient H (half its length; 0: a given profile)")
+    gust_velocity: float = quantity("m/s", "U_ds as a true airspeed: the gust's peak (|w| max)")
     max_load_factor: float = quantity("-", "the largest load factor, 1 + Delta n")
     min_load_factor: float = quantity("-", "the smallest load factor (the rebound)")
     max_shear: np.ndarray = quantity("N", "(N,) largest incremental shear")
@@ -102,10 +102,13 @@ class GustResult:
     one_g_bending_moment: np.ndarray = quantity("N m", "(N,) the 1 g trimmed bending moment")
     one_g_torque: np.ndarray = quantity("N m", "(N,) the 1 g trimmed torque")
     gusts: list[GustCase] = quantity("", "each gradient's response (up gusts)")
+    profile: GustCase | None = quantity("", "the given gust profile's response (null: none)")
     tuned_load_factor: int = quantity("-", "index in `gusts` of the largest load factor")
     tuned_bending_moment: int = quantity("-", "index of the largest root bending moment")
     tuned_torque: int = quantity("-", "index of the largest root |torque|")
-    envelope: GustLoadCase = quantity("", "total loads over every gradient, up and down")
+    envelope: GustLoadCase = quantity(
+        "", "total loads over every gradient, up and down, and the given profile as given"
+    )
     turbulence: TurbulenceLoads | None = quantity("", "continuous turbulence (null if not asked)")
     findings: list[str] = quantity("", "where the request leaves the regulation's ranges")
     solve_time: float = quantity("s", "wall time")

@@ -83,3 +83,36 @@ def test_the_load_cases_include_the_one_g_load(result: solver.GustResult) -> Non
     for case in cases:
         assert np.all(case.max_bending_moment >= result.one_g_bending_moment - 1e-9)
         assert np.all(case.min_bending_moment <= result.one_g_bending_moment + 1e-9)
+
+
+def test_a_given_profile_joins_the_envelope_as_given() -> None:
+    settings = solver.GustSettings(
+        gradients=2,
+        modes=2,
+        turbulence=False,
+        profile_time=(0.0, 1.0, 2.0),
+        profile_velocity=(0.0, -20.0, 0.0),
+    )
+    answer = solver.gust_analysis(study(), STUDY_FLIGHT, settings)
+    assert answer.profile is not None and answer.profile.gust_velocity == 20.0
+    assert answer.profile.min_bending_moment[0] < 0
+    assert np.all(
+        answer.envelope.min_bending_moment
+        <= answer.one_g_bending_moment + answer.profile.min_bending_moment + 1e-9
+    )
+
+
+@pytest.mark.parametrize(
+    ("given", "field"),
+    [
+        ({"profile_time": (0.0, 1.0)}, "profile_velocity"),
+        ({"profile_time": (0.0, 1.0, 1.0), "profile_velocity": (0.0, 1.0, 0.0)}, "profile_time"),
+        ({"profile_time": (0.0, 1.0), "profile_velocity": (0.0, 1.0, 0.0)}, "profile_velocity"),
+        ({"min_gradient": 50.0, "max_gradient": 20.0}, "max_gradient"),
+    ],
+    ids=["time-alone", "not-increasing", "lengths-differ", "gradients-reversed"],
+)
+def test_settings_that_mean_nothing_are_refused_naming_the_field(given: dict, field: str) -> None:
+    with pytest.raises(solver.InvalidInput) as caught:
+        solver.GustSettings(**given)
+    assert caught.value.field == field
