@@ -21,6 +21,7 @@ from solver.gusts.model import GustModel, gust_model
 from solver.gusts.profiles import (
     GRADIENT_RANGE,
     design_gust_velocity,
+    flight_profile_alleviation,
     reference_gust_velocity,
     turbulence_intensity,
 )
@@ -57,6 +58,12 @@ def gust_analysis(
     to_true = math.sqrt(SEA_LEVEL_DENSITY / model.density)  # EAS -> TAS
     dive = settings.speed == "dive"
     reference = reference_gust_velocity(settings.altitude, dive)
+    alleviation = settings.alleviation
+    if settings.weights is not None and settings.max_altitude is not None:
+        takeoff, landing, zero_fuel = settings.weights
+        alleviation = flight_profile_alleviation(
+            takeoff, landing, zero_fuel, settings.max_altitude, settings.altitude
+        )
     gradients = np.linspace(settings.min_gradient, settings.max_gradient, settings.gradients)
     slices = model.output_slices
     n = wing.n_stations
@@ -65,7 +72,7 @@ def gust_analysis(
     cases = []
     upper, lower = np.full(3 * n, -np.inf), np.full(3 * n, np.inf)
     for gradient in gradients:
-        amplitude = design_gust_velocity(gradient, reference, settings.alleviation) * to_true
+        amplitude = design_gust_velocity(gradient, reference, alleviation) * to_true
         response = discrete_response(model, float(gradient), amplitude)
         high, low = peaks(response.outputs)
         upper = np.maximum(upper, np.maximum(high[: 3 * n], -low[: 3 * n]))
@@ -106,7 +113,7 @@ def gust_analysis(
     turbulence = None
     if settings.turbulence:
         abar = a_bar(model)
-        intensity = turbulence_intensity(settings.altitude, dive) * settings.alleviation
+        intensity = turbulence_intensity(settings.altitude, dive) * alleviation
         spread = intensity * abar[: 3 * n]
         turbulence = TurbulenceLoads(
             intensity=intensity,
@@ -129,7 +136,7 @@ def gust_analysis(
         alpha=model.equilibrium.totals.alpha,
         clamped=model.clamped,
         reference_velocity=reference,
-        alleviation=settings.alleviation,
+        alleviation=alleviation,
         lift_slope=model.lift_slope,
         mass_ratio=mass_ratio,
         pratt_alleviation=k_g,

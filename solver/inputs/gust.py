@@ -46,11 +46,31 @@ class GustSettings:
     )
     alleviation: float = parameter(
         "-",
-        "F_g, the flight profile alleviation factor (CS-25.341(a)(6)); 1: none",
+        "F_g, the flight profile alleviation factor (CS-25.341(a)(6)); 1: none; ignored when "
+        "`weights` and `max_altitude` give it",
         ge=0.01,
         le=1.0,
         why="the regulation's factor lies between 0 and 1",
         default=1.0,
+    )
+    weights: tuple[float, ...] | None = parameter(
+        "N",
+        "F_g from the aircraft (CS-25.341(a)(6)): its maximum take-off, landing and zero-fuel "
+        "weights, in this order (with max_altitude); null: `alleviation` as given",
+        ge=1e-6,
+        le=1e9,
+        why="a milligram to a thousand airliners",
+        form="values",
+        default=None,
+        example=[700_000.0, 600_000.0, 560_000.0],
+    )
+    max_altitude: float | None = parameter(
+        "m",
+        "the maximum operating altitude Z_mo of F_g (with weights)",
+        ge=1.0,
+        le=30_000.0,
+        why="up to the stratosphere's airliners and beyond",
+        default=None,
     )
     min_gradient: float = parameter(
         "m", "shortest gust gradient H searched (CS-25.341(a): 9)", **_GRADIENT, default=9.0
@@ -112,6 +132,8 @@ class GustSettings:
     def __post_init__(self) -> None:
         for name, spec in fields.specs(GustSettings).items():
             value = getattr(self, name)
+            if value is None:
+                continue
             if spec.form == "number":
                 fields.number(name, value, spec)
             elif spec.form == "integer":
@@ -120,9 +142,13 @@ class GustSettings:
                 raise InvalidInput(name, "must be true or false")
             elif spec.form == "choice" and value not in spec.choices:
                 raise InvalidInput(name, "must be one of " + ", ".join(map(repr, spec.choices)))
-            elif spec.form == "values" and value is not None:
+            elif spec.form == "values":
                 values = tuple(fields.stations(name, value, None, spec).tolist())
                 object.__setattr__(self, name, values)
+        if (self.weights is None) != (self.max_altitude is None):
+            raise InvalidInput("max_altitude", "give weights and max_altitude together")
+        if self.weights is not None and len(self.weights) != 3:
+            raise InvalidInput("weights", "must be the take-off, landing and zero-fuel weights")
         if (self.profile_time is None) != (self.profile_velocity is None):
             raise InvalidInput(
                 "profile_velocity", "give profile_time and profile_velocity together"
@@ -134,6 +160,10 @@ class GustSettings:
                 raise InvalidInput("profile_velocity", "must have as many values as profile_time")
             if any(b <= a for a, b in zip(self.profile_time, self.profile_time[1:], strict=False)):
                 raise InvalidInput("profile_time", "must increase")
+        if self.weights is not None and self.max_altitude is not None:
+            takeoff, landing, zero_fuel = self.weights
+            if not zero_fuel <= takeoff >= landing:
+                raise InvalidInput("weights", "the take-off weight is the largest")
         if self.max_gradient < self.min_gradient:
             raise InvalidInput("max_gradient", "must not be below min_gradient")
 

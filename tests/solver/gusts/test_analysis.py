@@ -116,3 +116,17 @@ def test_settings_that_mean_nothing_are_refused_naming_the_field(given: dict, fi
     with pytest.raises(solver.InvalidInput) as caught:
         solver.GustSettings(**given)
     assert caught.value.field == field
+
+
+def test_the_alleviation_factor_follows_from_the_aircrafts_weights() -> None:
+    settings = solver.GustSettings(
+        gradients=1, modes=2, turbulence=False, weights=(1000.0, 900.0, 800.0), max_altitude=12000.0
+    )
+    answer = solver.gust_analysis(study(), STUDY_FLIGHT, settings)
+    f_gm = math.sqrt(0.8 * math.tan(math.pi * 0.9 / 4))
+    expected = 0.5 * (1 - 12000 / 76200 + f_gm)
+    assert answer.alleviation == pytest.approx(expected, rel=1e-12)
+    to_true = math.sqrt(1.225 / STUDY_FLIGHT.density)
+    assert answer.gusts[0].gust_velocity == pytest.approx(
+        design_gust_velocity(9.0, 17.07, expected) * to_true
+    )
