@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import solver
+from solver.gusts.discrete import discrete_response, peaks
 from solver.gusts.model import gust_model
 from tests.flutter_reference import goland_mass, goland_wing
 from tests.solver.gusts.wings import RHO, STRIP, STUDY_FLIGHT, rectangle, study
@@ -66,3 +67,25 @@ def test_a_wing_without_mass_or_a_flight_without_weight_is_refused_naming_it() -
     with pytest.raises(solver.InvalidInput) as caught:
         gust_model(study(), solver.FlightCondition(12.0, 5.0, RHO))
     assert caught.value.field == "flight.weight"
+
+
+def test_a_rigid_aircrafts_load_factor_does_not_depend_on_where_its_mass_sits() -> None:
+    # The weight's mass plunges as one when the wing does not bend: a store at the tip (part
+    # of the same weight) changes the wing's root bending (it relieves it), not the load factor.
+    flight = solver.FlightCondition(100.0, density=RHO, weight=2e5)
+    plain = rectangle()
+    store = solver.ConcentratedMass(
+        station=plain.n_stations - 1, mass=500.0, inertia=1.0, offset=0.0
+    )
+    stored = dataclasses.replace(plain, mass=dataclasses.replace(plain.mass, concentrated=(store,)))
+    answers = []
+    for wing in (plain, stored):
+        model = gust_model(wing, flight, STRIP, 2)
+        answers.append((model, peaks(discrete_response(model, 10.0, 1.0).outputs)[0]))
+    (model, without), (_, with_store) = answers
+    s = model.output_slices
+    assert with_store[s["load_factor"]] == pytest.approx(without[s["load_factor"]], rel=1e-3)
+    n = plain.n_stations
+    # The store's inertia under the load factor: about n g m y_tip off the root bending.
+    relief = without[s["load_factor"]] * 9.80665 * 500.0 * plain.y[-1]
+    assert without[n] - with_store[n] == pytest.approx(relief, rel=0.05)
