@@ -81,3 +81,27 @@ def test_a_wing_past_flutter_is_a_typed_unstable_answer(client: httpx.Client) ->
     problem = response.json()
     assert problem["type"].endswith("/problems/unstable")
     assert problem["growth_rate"] > 0 and problem["frequency"] == pytest.approx(70.0, rel=0.06)
+
+
+def test_gust_conditions_join_the_loads_envelope_through_http(client: httpx.Client) -> None:
+    study = GUST_EXAMPLES["study"]["value"]
+    body = {
+        "wing": study["wing"],
+        "cases": [{"name": "cruise", "flight": {"velocity": 14.0, "weight": 300.0}}],
+        "gusts": [
+            {
+                "name": "V_C gusts",
+                "flight": study["flight"],
+                "gust": {"gradients": 4, "turbulence": False},
+            }
+        ],
+    }
+    response = client.post("/loads", json=body)
+    assert response.status_code == 200, response.text
+    cases = response.json()["cases"]
+    assert [c["name"] for c in cases] == ["cruise", "V_C gusts up", "V_C gusts down"]
+    assert [c["kind"] for c in cases] == ["given", "gust_dynamic", "gust_dynamic"]
+    expected = REQUESTS["loads"].model_validate(body).to_solver().run()
+    np.testing.assert_allclose(
+        cases[1]["bending_moment"], expected.cases[1].bending_moment, rtol=1e-8
+    )
