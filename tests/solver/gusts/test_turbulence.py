@@ -4,8 +4,6 @@ gust, and A-bar scales as the spectrum says."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 import scipy.special
@@ -44,16 +42,18 @@ def test_the_zero_frequency_response_is_the_very_long_gusts() -> None:
         assert long[i] == pytest.approx(steady[i].real, rel=1e-3)
 
 
-def test_a_bar_is_the_rms_of_the_response_to_unit_turbulence() -> None:
-    # A white-noise check: the same response with the spectrum doubled doubles A-bar^2; here
-    # through the velocity (Phi scales as 1/V at low frequency): A-bar is positive and finite,
-    # the load factor's below the sharp-edged gust's increment per m/s.
-    model = gust_model(study(), STUDY_FLIGHT, None, 3)
+def test_a_rigid_wing_in_turbulence_much_longer_than_its_chord_answers_quasi_statically() -> None:
+    # Von Karman's scale (762 m) is 760 chords: most of the variance lies where the section's
+    # lag (Sears) is 1, so A-bar is the quasi-steady gain |H(0)| (the spectrum's unit
+    # integral) less what its tail past k ~ 0.1 loses: 2.2 % (measured), within 1 to 4 %.
+    model = gust_model(
+        rectangle(), solver.FlightCondition(V, density=RHO, weight=1e5), STRIP, 2, True
+    )
     values = a_bar(model)
-    assert np.all(np.isfinite(values))
-    n_bar = values[model.output_slices["load_factor"]]
-    sharp = 2 * 0.5 * STUDY_FLIGHT.density * STUDY_FLIGHT.velocity * model.lift_slope * model.area
-    assert 0 < n_bar < sharp / STUDY_FLIGHT.weight * math.sqrt(2)
+    steady = np.abs(frequency_response(model, np.array([1e-8]))[:, 0])
+    n = model.wing.n_stations
+    for i in (0, n):
+        assert 0.96 * steady[i] < values[i] < 0.99 * steady[i]
 
 
 def test_the_frequency_response_carries_the_time_responses_energy() -> None:
