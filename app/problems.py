@@ -19,7 +19,14 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope
 
-from solver import ConvergenceError, InfeasibleDesign, InvalidInput, NoEquilibrium, SolverError
+from solver import (
+    ConvergenceError,
+    DynamicInstability,
+    InfeasibleDesign,
+    InvalidInput,
+    NoEquilibrium,
+    SolverError,
+)
 
 __all__ = [
     "PROBLEM_MEDIA_TYPE",
@@ -88,6 +95,14 @@ PROBLEM_TYPES = _types(
         "could not be met (lift, jig_twist, von_mises, tip_heave, stability_margin) or "
         "`optimizer` when IPOPT failed otherwise, and with load cases `case` the case it could "
         "not be met in. Relax it, or give the design more freedom.",
+    ),
+    ProblemType(
+        "unstable",
+        "Dynamically unstable",
+        422,
+        "The wing flutters or diverges at this airspeed: its linear aeroelastic system has a "
+        "growing root (`growth_rate` [1/s], `frequency` [rad/s], 0 for divergence), so a gust "
+        "has no bounded response. Fly slower, or stiffen the wing.",
     ),
     ProblemType(
         "body-too-large",
@@ -210,6 +225,15 @@ SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
         "infeasible-design",
         str(e),
         extensions={"constraint": e.constraint} | ({} if e.case is None else {"case": e.case}),
+    ),
+    DynamicInstability: lambda e: Problem(
+        "unstable",
+        str(e),
+        extensions={
+            "velocity": e.velocity,
+            "growth_rate": e.growth_rate,
+            "frequency": e.frequency,
+        },
     ),
 }
 

@@ -32,6 +32,7 @@ from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.dynamics.modes import natural_modes
 from solver.errors import (
     ConvergenceError,
+    DynamicInstability,
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
@@ -39,6 +40,7 @@ from solver.errors import (
     SolverError,
 )
 from solver.fields import Limits, Spec, digest, spec_of, specs
+from solver.gusts.analysis import gust_analysis, gust_load_cases
 from solver.inputs.airfoil import MAX_CAMBER
 from solver.inputs.atmosphere import (
     Air,
@@ -66,6 +68,7 @@ from solver.inputs.flight import (
     OperatingPoint,
     VelocityRange,
 )
+from solver.inputs.gust import GustCondition, GustSettings
 from solver.inputs.load_case import FlightCase
 from solver.inputs.mass import ConcentratedMass, MassModel
 from solver.inputs.options import InitialGuess, SolverOptions, ValidityLimits
@@ -77,7 +80,8 @@ from solver.numerics.warm import is_compiled, warm_up
 from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
-from solver.operations.sizing import CaseInput, LoadsInput
+from solver.operations.gust import GustInput
+from solver.operations.sizing import CaseInput, GustCaseInput, LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.operations.table import OPERATION_TABLE, OPERATIONS, TAGS, Operation, SpreadInput
 from solver.optimization.optimize import optimize
@@ -119,6 +123,7 @@ from solver.results.flutter import (
     NaturalModes,
     NoFlutter,
 )
+from solver.results.gusts import GustCase, GustLoadCase, GustResult, TurbulenceLoads
 from solver.results.quantities import Progress
 from solver.results.sizing import (
     CaseLoads,
@@ -179,6 +184,17 @@ __all__ = [
     "control_effectiveness",
     "control_sweep",
     "ConvergenceError",
+    "DynamicInstability",
+    "GustCase",
+    "GustCaseInput",
+    "GustCondition",
+    "GustInput",
+    "GustLoadCase",
+    "GustResult",
+    "GustSettings",
+    "TurbulenceLoads",
+    "gust_analysis",
+    "gust_load_cases",
     "Design",
     "DesignCondition",
     "DesignCaseResult",

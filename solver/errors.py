@@ -10,6 +10,7 @@ import numpy as np
 
 __all__ = [
     "ConvergenceError",
+    "DynamicInstability",
     "InfeasibleDesign",
     "InvalidInput",
     "NoEquilibrium",
@@ -150,6 +151,30 @@ class OptimizerNotConverged(ConvergenceError):
             f"the design optimizer did not converge: {reason} after {iterations} iterations "
             f"(largest constraint violation {residual_norm:.3g} of its scale)",
         )
+
+
+class DynamicInstability(SolverError):
+    """The linear aeroelastic system has a growing motion at this airspeed (past flutter or
+    divergence): a gust has no bounded response.
+
+    Attributes:
+        velocity: [m/s] airspeed analysed.
+        growth_rate: [1/s] the largest real part of the system's roots (positive).
+        frequency: [rad/s] that root's frequency (0: divergence, else flutter).
+    """
+
+    def __init__(self, velocity: float, growth_rate: float, frequency: float) -> None:
+        self.velocity = velocity
+        self.growth_rate = growth_rate
+        self.frequency = frequency
+        kind = "divergence" if frequency == 0 else f"flutter at {frequency:.4g} rad/s"
+        super().__init__(
+            f"the wing is dynamically unstable at V = {velocity:g} m/s ({kind}, growing at "
+            f"{growth_rate:.3g} 1/s): no bounded gust response"
+        )
+
+    def __reduce__(self) -> tuple[type, tuple[float, float, float]]:
+        return type(self), (self.velocity, self.growth_rate, self.frequency)
 
 
 @contextlib.contextmanager

@@ -15,6 +15,7 @@ __all__ = [
     "LOADS_EXAMPLES",
     "EXAMPLES",
     "FLUTTER_EXAMPLES",
+    "GUST_EXAMPLES",
     "GOLAND_FLUTTER",
     "OPTIMIZE_EXAMPLES",
     "ROLL_EXAMPLES",
@@ -324,6 +325,26 @@ LOADS_EXAMPLES: dict[str, Any] = {
         },
     },
 }
+GUST_EXAMPLES: dict[str, Any] = {
+    "study": {
+        "summary": "The study's wing with a light mass, 300 N at 12 m/s: 1-cos gusts from 9 to "
+        "107 m and continuous turbulence",
+        "value": {
+            "wing": STUDY_WING | {"mass": STUDY_MASS},
+            "flight": {"velocity": 12.0, "weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+        },
+    },
+    "clamped": {
+        "summary": "The same wing held at its root (a wind-tunnel model), strip theory, 5 "
+        "gradients",
+        "value": {
+            "wing": STUDY_WING | {"mass": STUDY_MASS},
+            "flight": {"velocity": 12.0, "weight": 300.0, "density": ISA_SEA_LEVEL_DENSITY},
+            "gust": {"clamped": True, "gradients": 5, "turbulence": False},
+            "options": {"aerodynamics": "strip"},
+        },
+    },
+}
 # Operation name -> its examples ({name: {summary, value}}): what /docs offers, the page loads,
 # and the first of which the request model shows as its example. Every operation of
 # `solver.OPERATION_TABLE` has some (tests/app/schemas/test_examples.py).
@@ -335,4 +356,5 @@ EXAMPLES: dict[str, dict[str, Any]] = {
     "roll": ROLL_EXAMPLES,
     "controls": CONTROLS_EXAMPLES,
     "loads": LOADS_EXAMPLES,
+    "gust": GUST_EXAMPLES,
 }

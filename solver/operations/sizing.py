@@ -6,6 +6,7 @@ spreads the cases over its workers, and `run()` answers the whole in one process
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Sequence
@@ -15,16 +16,26 @@ from functools import cached_property
 import numpy as np
 
 from solver import fields
-from solver.errors import InvalidInput
+from solver.errors import DynamicInstability, InvalidInput, NoEquilibrium, SolverError
 from solver.fields import parameter
+from solver.gusts.analysis import gust_analysis
+from solver.inputs.atmosphere import SEA_LEVEL_DENSITY
 from solver.inputs.envelope import FlightEnvelope
 from solver.inputs.flight import FlightCondition
+from solver.inputs.gust import GustCondition
 from solver.inputs.load_case import FlightCase
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.operations.common import check_meshed
 from solver.results.quantities import Progress
-from solver.results.sizing import CaseKind, CaseLoads, LoadsEnvelope, LoadsInfo, VnBoundary
+from solver.results.sizing import (
+    CaseKind,
+    CaseLoads,
+    CaseStatus,
+    LoadsEnvelope,
+    LoadsInfo,
+    VnBoundary,
+)
 from solver.sizing.case_loads import case_loads
 from solver.sizing.cases import load_cases
 from solver.sizing.envelope import correlated_loads, spanwise_envelope, spar_envelope
@@ -32,7 +43,7 @@ from solver.sizing.vn import vn_diagrams
 from solver.statics.jig import at_rest
 from solver.statics.system import CoupledSystem
 
-__all__ = ["CaseInput", "LoadsInput"]
+__all__ = ["CaseInput", "GustCaseInput", "LoadsInput"]
 
 # [1/rad] thin-airfoil theory's 2 pi: only to count a V-n diagram's points (`case_count`).
 _NOMINAL_LIFT_SLOPE = 2.0 * math.pi
@@ -71,6 +82,73 @@ class CaseInput:
 
 
 @dataclass(frozen=True, eq=False)
+class GustCaseInput:
+    """One side of a gust condition: what a worker runs of a `LoadsInput`'s `gusts` (`run`
+    gives its `CaseLoads`: the 1-cos gusts' total loads, each station's largest (`up`) or
+    smallest (down) over every gradient and time, kind gust_dynamic)."""
+
+    wing: Wing
+    condition: GustCondition
+    up: bool
+    options: SolverOptions
+
+    @property
+    def name(self) -> str:
+        return f"{self.condition.name} {'up' if self.up else 'down'}"
+
+    @property
+    def kind(self) -> CaseKind:
+        return "gust_dynamic"
+
+    @cached_property
+    def key(self) -> bytes:
+        return fields.digest((self.wing, self.condition, self.up, self.options))
+
+    def run(self, progress: Progress | None = None) -> CaseLoads:
+        started = time.perf_counter()
+        flight = self.condition.flight
+        velocity = flight.velocity or 0.0
+        described = CaseLoads(
+            name=self.name,
+            kind=self.kind,
+            status="equilibrium",
+            velocity=velocity,
+            equivalent_airspeed=velocity * math.sqrt(flight.density / SEA_LEVEL_DENSITY),
+            density=flight.density,
+            weight=flight.weight or 0.0,
+            load_factor=1.0,
+        )
+        try:
+            result = gust_analysis(self.wing, flight, self.condition.gust, self.options)
+        except SolverError as error:
+            status: CaseStatus = (
+                "unstable"
+                if isinstance(error, DynamicInstability)
+                else "no_equilibrium"
+                if isinstance(error, NoEquilibrium)
+                else "not_converged"
+            )
+            return dataclasses.replace(
+                described,
+                status=status,
+                reason=str(error),
+                solve_time=time.perf_counter() - started,
+            )
+        side = "max" if self.up else "min"
+        envelope = result.envelope
+        factors = [c.max_load_factor if self.up else c.min_load_factor for c in result.gusts]
+        return dataclasses.replace(
+            described,
+            load_factor=max(factors) if self.up else min(factors),
+            alpha=result.alpha,
+            shear=getattr(envelope, f"{side}_shear"),
+            bending_moment=getattr(envelope, f"{side}_bending_moment"),
+            torque=getattr(envelope, f"{side}_torque"),
+            solve_time=time.perf_counter() - started,
+        )
+
+
+@dataclass(frozen=True, eq=False)
 class LoadsInput:
     """Sizing loads: every case flown on the flexible wing (its own mass under the load factor
     with `wing.mass`), the envelope along the span, correlated loads, the spar's margins."""
@@ -103,6 +181,15 @@ class LoadsInput:
             "dive_speed": 16.0,
         },
     )
+    gusts: tuple[GustCondition, ...] = parameter(
+        "",
+        "flights whose flexible-wing 1-cos gust loads (as POST /gust answers them: 1 g plus "
+        "the gusts of every gradient, up and down) join the envelope as two cases each, "
+        "'<name> up' and '<name> down' (kind gust_dynamic); needs wing.mass",
+        form="items",
+        given=GustCondition,
+        default=(),
+    )
     stations: tuple[int, ...] | None = parameter(
         "-",
         "stations whose bending moment and torque are correlated over the cases (indices, 0 "
@@ -117,9 +204,14 @@ class LoadsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        if not self.cases and self.envelope is None:
+        if not self.cases and self.envelope is None and not self.gusts:
             raise InvalidInput("cases", "give load cases, an envelope, or both")
+        if self.gusts and self.wing.mass is None:
+            raise InvalidInput("wing.mass", "is required: gust loads need the wing's mass")
         names = [case.name for case in self.cases]
+        for i, gust in enumerate(self.gusts):
+            if gust.name in [g.name for g in self.gusts[:i]]:
+                raise InvalidInput(f"gusts[{i}].name", f"{gust.name!r} names another too")
         for i, name in enumerate(names):
             if name in names[:i]:
                 raise InvalidInput(f"cases[{i}].name", f"{name!r} names another case too")
@@ -141,9 +233,10 @@ class LoadsInput:
 
     @cached_property
     def key(self) -> bytes:
-        return fields.digest(
-            (self.wing, self.cases, self.envelope, self.correlated_stations, self.modelled)
-        )
+        described = (self.wing, self.cases, self.envelope, self.correlated_stations)
+        # Without gust conditions the key is what it was before they existed.
+        gusts = (self.gusts,) if self.gusts else ()
+        return fields.digest((*described, self.modelled, *gusts))
 
     @cached_property
     def case_count(self) -> int:
@@ -151,7 +244,7 @@ class LoadsInput:
         them: which points a V-n diagram has does not depend on the lift slope (only where its
         gust points are), so a nominal one counts them."""
         if self.envelope is None:
-            return len(self.cases)
+            return len(self.cases) + 2 * len(self.gusts)
         wing = self.wing
         derived = load_cases(
             self.envelope,
@@ -159,11 +252,11 @@ class LoadsInput:
             mean_chord=wing.mean_chord,
             lift_slope=self.envelope.lift_slope or _NOMINAL_LIFT_SLOPE,
         )
-        return len(self.cases) + len(derived)
+        return len(self.cases) + len(derived) + 2 * len(self.gusts)
 
     @cached_property
-    def plan(self) -> tuple[CaseInput, ...]:
-        """Every case to fly, given then derived, in order."""
+    def plan(self) -> tuple[CaseInput | GustCaseInput, ...]:
+        """Every case to fly, given, derived, then the gust conditions' (up, down), in order."""
         given = [
             CaseInput(
                 self.wing,
@@ -177,7 +270,12 @@ class LoadsInput:
             )
             for case in self.cases
         ]
-        return (*given, *self._derived())
+        gusts = [
+            GustCaseInput(self.wing, condition, up, self.modelled)
+            for condition in self.gusts
+            for up in (True, False)
+        ]
+        return (*given, *self._derived(), *gusts)
 
     def _derived(self) -> list[CaseInput]:
         if self.envelope is None:

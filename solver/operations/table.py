@@ -16,10 +16,17 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, Protocol
 
-from solver.errors import ConvergenceError, InfeasibleDesign, NoEquilibrium, SolverError
+from solver.errors import (
+    ConvergenceError,
+    DynamicInstability,
+    InfeasibleDesign,
+    NoEquilibrium,
+    SolverError,
+)
 from solver.operations.controls import ControlsInput, RollInput
 from solver.operations.design import OptimizeInput
 from solver.operations.dynamics import FlutterInput
+from solver.operations.gust import GustInput
 from solver.operations.sizing import LoadsInput
 from solver.operations.statics import SolveInput, SweepInput
 from solver.results.quantities import Progress
@@ -42,6 +49,7 @@ TAGS: dict[str, str] = {
     "dynamics": "Vibration modes and flutter.",
     "controls": "Flaps and ailerons: roll, control effectiveness, reversal.",
     "loads": "Sizing loads: load cases, the flight and loads envelopes.",
+    "gusts": "Gust loads: the flexible wing in 1-cos gusts and continuous turbulence.",
 }
 
 
@@ -272,6 +280,34 @@ load (1.5), and the V-n diagrams. The cases run spread over the workers.""",
         parts="case_count",
         answers=(),
         spread=True,
+    ),
+    Operation(
+        name="gust",
+        input=GustInput,
+        tag="gusts",
+        summary="Gust loads of the flexible wing: 1-cos gusts, the tuned gust, continuous "
+        "turbulence",
+        description="""The aircraft's plunge (its weight's mass; `gust.clamped` holds the root)
+and the wing's lowest natural modes, with strip aerodynamics lagged by Wagner's function (R. T.
+Jones' approximation) for the motion and Kuessner's (Sears and Sparks') for the gust, the
+lattice's steady spanwise loading as the 3D correction (`options.aerodynamics` lattice, the
+default, or strip), each strip meeting the gust when it reaches its leading edge, linearised
+about the 1 g trim of `flight`.
+
+Answers the CS-25.341(a) 1-cos gusts, U_ds = U_ref F_g (H / 107 m)^(1/6), at every gradient H
+(default 20 from 9 to 107 m): each one's load factor, incremental shear, bending moment and
+torque envelopes along the span and time histories, the tuned gust of each load quantity, the
+total loads (1 g plus gust, up and down); continuous turbulence (CS-25.341(b), von Karman, L =
+762 m): A-bar and the design loads P_1g +- U_sigma A-bar; Pratt's K_g beside the model's load
+factor. Needs `wing.mass` and `flight.weight`. Past flutter or divergence there is no gust
+response: 422 `/problems/unstable`.""",
+        refusals="a wing without mass or a flight without weight is invalid input naming the "
+        "field; past flutter or divergence (/problems/unstable, with the growth rate); no "
+        "trimmed equilibrium (/problems/no-equilibrium, /problems/not-converged).",
+        budget="flutter",
+        answered="analysed",
+        answers=(DynamicInstability, NoEquilibrium, ConvergenceError),
+        requires=("wing.mass",),
     ),
 )
 

@@ -28,8 +28,8 @@ __all__ = [
     "VnBoundary",
 ]
 
-CaseStatus = Literal["equilibrium", "no_equilibrium", "not_converged", "invalid"]
-CaseKind = Literal["given", "manoeuvre", "gust"]
+CaseStatus = Literal["equilibrium", "no_equilibrium", "not_converged", "invalid", "unstable"]
+CaseKind = Literal["given", "manoeuvre", "gust", "gust_dynamic"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,13 +38,17 @@ class CaseLoads:
 
     name: str = quantity("", "the case's name, as given or as derived from its V-n point")
     kind: CaseKind = quantity(
-        "", "given: a case of the request; manoeuvre or gust: a V-n point of the envelope"
+        "",
+        "given: a case of the request; manoeuvre or gust: a V-n point of the envelope; "
+        "gust_dynamic: the flexible wing's 1-cos gusts' total loads (1 g + gust), up or down, "
+        "each station's extreme over time (not simultaneous along the span)",
     )
     status: CaseStatus = quantity(
         "",
         "equilibrium: answered; no_equilibrium: the wing cannot fly it (past divergence, past "
         "the lift it can carry, a trim it cannot reach); not_converged; invalid: the case "
-        "cannot be posed on this wing (an aileron deflection without ailerons)",
+        "cannot be posed on this wing (an aileron deflection without ailerons); unstable: "
+        "a gust condition past flutter or divergence",
     )
     reason: str | None = quantity("", "why there are no loads, else null", default=None)
     velocity: float = quantity("m/s", "true airspeed", default=0.0)

@@ -221,6 +221,7 @@ def test_the_registry_names_each_input_type() -> None:
         "roll": solver.RollInput,
         "controls": solver.ControlsInput,
         "loads": solver.LoadsInput,
+        "gust": solver.GustInput,
     } == solver.OPERATIONS
 
 

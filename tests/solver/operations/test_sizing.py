@@ -167,3 +167,51 @@ def test_what_cannot_be_asked_is_refused_before_any_work(
         _loads(**changes)
     if field is not None:
         assert refused.value.field == field
+
+
+_GUSTS = (
+    solver.GustCondition(
+        "V_C gusts",
+        solver.FlightCondition(12.0, density=DENSITY, weight=300.0),
+        solver.GustSettings(gradients=5, modes=2, turbulence=False),
+    ),
+)
+
+
+def test_gust_conditions_join_the_envelope_and_leave_the_other_cases_alone() -> None:
+    without = _loads(envelope=None)
+    with_gusts = _loads(envelope=None, gusts=_GUSTS)
+    assert without.key != with_gusts.key and with_gusts.case_count == without.case_count + 2
+    assert [part.name for part in with_gusts.plan[-2:]] == ["V_C gusts up", "V_C gusts down"]
+    plain, joined = without.run(), with_gusts.run()
+    for before, after in zip(plain.cases, joined.cases, strict=False):
+        assert np.array_equal(before.bending_moment, after.bending_moment)
+        assert np.array_equal(before.torque, after.torque)
+    up, down = joined.cases[-2:]
+    assert up.kind == down.kind == "gust_dynamic" and up.answered and down.answered
+    gusts = solver.gust_analysis(loads_wings.wing(), _GUSTS[0].flight, _GUSTS[0].gust)
+    assert up.bending_moment == pytest.approx(gusts.envelope.max_bending_moment, rel=1e-9)
+    assert down.shear == pytest.approx(gusts.envelope.min_shear, rel=1e-9)
+    envelope = joined.envelope
+    assert envelope is not None
+    for name in ("shear", "bending_moment", "torque"):
+        table = np.vstack([getattr(case, name) for case in joined.cases if case.answered])
+        assert np.array_equal(getattr(envelope, f"max_{name}"), table.max(axis=0))
+        assert np.array_equal(getattr(envelope, f"min_{name}"), table.min(axis=0))
+
+
+def test_gust_conditions_need_the_wings_mass() -> None:
+    with pytest.raises(solver.InvalidInput) as caught:
+        _loads(wing=solver.Wing.create(**study_arrays(16)), gusts=_GUSTS)
+    assert caught.value.field == "wing.mass"
+
+
+def test_a_gust_condition_past_flutter_is_answered_in_its_place() -> None:
+    # The study's light wing trimmed at 40 m/s: past its divergence; the case says why.
+    fast = solver.GustCondition(
+        "fast", solver.FlightCondition(40.0, density=DENSITY, weight=300.0), _GUSTS[0].gust
+    )
+    answer = _loads(envelope=None, gusts=(fast,)).run()
+    assert [case.status for case in answer.cases[-2:]] != ["equilibrium", "equilibrium"]
+    assert all(case.reason for case in answer.cases[-2:])
+    assert answer.cases[0].answered
