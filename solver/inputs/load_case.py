@@ -26,6 +26,7 @@ class FlightCase:
         "the flight: trimmed (weight and load_factor, or lift) at an airspeed",
         form="nested",
         given=FlightCondition,
+        without=("alpha",),
     )
     aileron: float = parameter(
         "deg",
