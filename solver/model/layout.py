@@ -348,7 +348,9 @@ class Layout:
         _deprecated("Layout.parameters(...)", "Layout.pack({name: value, ...})")
         positional: tuple[str, ...] = ("y", "chord", "elastic_axis", "bending_stiffness")
         positional += ("torsional_stiffness", "jig_twist")
-        values: dict[str, Any] = {slot.name: _default(slot.name) for slot in WING_SLOTS}
+        values: dict[str, Any] = {
+            slot.name: np.full(self.size(slot), _default(slot.name)) for slot in WING_SLOTS
+        }
         values |= dict(zip(positional, arrays, strict=True))
         values |= {"sweep": sweep_deg, "camber": camber, "alpha": alpha_deg}
         return self.pack(values | {"deformed_axis": 1.0 if deformed_axis else 0.0})
