@@ -152,7 +152,8 @@ def _library_path(layout: Layout, flow: bool = False) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
     flags = "".join(_flags(_compiler())).replace("-", "_")
     strip = "-strip" if layout.aerodynamics == "strip" else ""  # the lattice's names unchanged
-    mesh = f"n{layout.n}-k{layout.chordwise}{strip}"
+    exact = "-exact" if layout.exact else ""
+    mesh = f"n{layout.n}-k{layout.chordwise}{strip}{exact}"
     model = f"model{MODEL_VERSION}" + ("-flow" if flow else "")
     tag = f"{mesh}-{model}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
