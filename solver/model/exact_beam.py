@@ -40,7 +40,10 @@ others: `solver.model.aerodynamics.panel_loads`).
 
 from __future__ import annotations
 
+from typing import Any
+
 import casadi as ca
+import numpy as np
 
 from solver.model.beam import Beam
 from solver.model.geometry import (
@@ -52,7 +55,7 @@ from solver.model.geometry import (
 )
 from solver.model.layout import Layout
 
-__all__ = ["EXACT_LOADS", "ExactBeam", "exact_structure_rows"]
+__all__ = ["EXACT_LOADS", "ExactBeam", "exact_internal_loads", "exact_structure_rows"]
 
 EXACT_LOADS = 2  # per-panel rows the exact beam adds after the loads: (r x F) . e_c, (r x F) . n
 
@@ -130,3 +133,32 @@ class ExactBeam(Beam):
         explicit = ca.Function("exact_beam_z", [z, held, p], [ca.jacobian(rows_at, z)])
         through_z = ca.horzcat(explicit(self.z, loads, self.p), ca.MX(rows_at.size1(), nx - n3))
         return self.rows(*self._internal(loads_x, self.z)) + through_z
+
+
+def exact_internal_loads(
+    wing: Any, force: np.ndarray, center: np.ndarray, beta: np.ndarray, k: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Numpy, for the answers: (N,) M_i and T_i [N m] (module docstring) of the panels' forces
+    (3, M) [N] at their deformed force points (3, M) [m] (geometry axes), at the rotations
+    beta (N,) [rad]; `wing` the numeric `solver.inputs.wing.Wing`."""
+    e_x, e_y = span_axis(wing)
+    f_x, f_y, f_normal = in_wing_plane(force, wing)
+    r_x, r_y, r_normal = in_wing_plane(center, wing)
+    f_along, f_across = e_x * f_x + e_y * f_y, e_y * f_x - e_x * f_y
+    r_along, r_across = e_x * r_x + e_y * r_y, e_y * r_x - e_x * r_y
+    # r x F in the right-handed frame (e_s, n, e_c).
+    m_along = r_normal * f_across - r_across * f_normal
+    m_normal = r_across * f_along - r_along * f_across
+    m_across = r_along * f_normal - r_normal * f_along
+
+    def outboard(values: np.ndarray) -> np.ndarray:
+        strips = values.reshape(-1, k).sum(axis=1)
+        return np.concatenate([np.cumsum(strips[::-1])[::-1], [0.0]])
+
+    arc = np.asarray(wing.arc_length, dtype=float)
+    along, heave = reference_line(beta, np.diff(arc))
+    f_along_sum, f_normal_sum, f_across_sum = (outboard(f) for f in (f_along, f_normal, f_across))
+    bending = outboard(m_across) - along * f_normal_sum + heave * f_along_sum
+    about_axis = outboard(m_along) - heave * f_across_sum
+    about_normal = outboard(m_normal) + along * f_across_sum
+    return bending, np.cos(beta) * about_axis + np.sin(beta) * about_normal

@@ -140,7 +140,9 @@ def _sinc(x: Any) -> Any:
     small = x * x
     series = 1 - small / 6 + small * small / 120
     if isinstance(x, ca.SX | ca.MX):
-        return ca.if_else(ca.fabs(x) < 1e-3, series, ca.sin(x) / ca.if_else(x == 0, 1, x))
+        symbol: Any = x
+        safe_symbol: Any = ca.if_else(symbol == 0, 1, symbol)
+        return ca.if_else(ca.fabs(symbol) < 1e-3, series, ca.sin(symbol) / safe_symbol)
     x = np.asarray(x, dtype=float)
     safe = np.where(x == 0.0, 1.0, x)
     return np.where(np.abs(x) < 1e-3, series, np.sin(safe) / safe)
@@ -149,10 +151,8 @@ def _sinc(x: Any) -> Any:
 def segment_chords(beta: Any, h: Any) -> tuple[Any, Any]:
     """(N-1,) the segments' chords along the jig axis and the normal [m], of rotations beta (N,)
     [rad] and lengths h (N-1,) [m]: h sinc(db/2) (cos b, sin b) (`solver.model.exact_beam`)."""
-    if isinstance(beta, ca.SX | ca.MX):
-        cos, sin = ca.cos, ca.sin
-    else:
-        cos, sin = np.cos, np.sin
+    cos: Any = ca.cos if isinstance(beta, ca.SX | ca.MX) else np.cos
+    sin: Any = ca.sin if isinstance(beta, ca.SX | ca.MX) else np.sin
     middle = (beta[:-1] + beta[1:]) / 2
     length = h * _sinc((beta[1:] - beta[:-1]) / 2)
     return length * cos(middle), length * sin(middle)

@@ -234,7 +234,7 @@ class CoupledSystem:
     def model_key(self) -> tuple:  # type: ignore[type-arg]
         """The identity of the wing as modelled, whatever the alpha: what the wing at rest and
         its linear divergence are cached by (the flow's only when it is not the symmetric)."""
-        key = (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)
+        key: tuple = (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)  # type: ignore[type-arg]
         if self.structure != "linear":
             key = (*key, self.structure)
         return key if self.flow == SYMMETRIC else (*key, self.flow.key)

@@ -1,0 +1,237 @@
+"""solver.model.exact_beam: the geometrically exact beam against the elastica's exact solutions
+(a pure end moment rolls a cantilever into a circular arc; a dead tip load against Bisshopp and
+Drucker's tables), its convergence with N, and its small-deflection limit, the linear beam's.
+
+References: the circle, EI beta' = M0 (Euler's elastica); K. E. Bisshopp and D. C. Drucker,
+"Large deflection of cantilever beams", Quarterly of Applied Mathematics 3 (1945) 272-275, their
+closed form in elliptic integrals and its table of the tip's vertical deflection and horizontal
+retreat against P L^2 / EI, here to five digits (the closed form evaluated with SciPy's elliptic
+integrals, as A. Mattiasson tabulates it, "Numerical results from large deflection beam and
+frame problems analysed by means of elliptic integrals", IJNME 17 (1981) 145-153; the test of
+convergence evaluates it anew).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import casadi as ca
+import numpy as np
+import pytest
+
+import solver
+from solver.model.aerodynamics import LOADS
+from solver.model.exact_beam import EXACT_LOADS, ExactBeam, exact_structure_rows
+from solver.model.geometry import reference_line
+from solver.model.layout import Layout
+
+LENGTH, EI, GJ = 2.0, 3.0e3, 1.0e3
+
+# P L^2 / EI: the tip's vertical deflection / L and horizontal retreat (L - x_tip) / L.
+BISSHOPP_DRUCKER = {
+    1.0: (0.30172, 0.05643),
+    2.0: (0.49346, 0.16064),
+    3.0: (0.60325, 0.25442),
+    4.0: (0.66996, 0.32894),
+    5.0: (0.71379, 0.38763),
+    10.0: (0.81061, 0.55500),
+}
+
+
+def _cantilever(n: int) -> tuple[Layout, np.ndarray, ca.MX, ca.MX, ExactBeam]:
+    layout = Layout(n, beam="geometrically_exact")
+    wing = solver.Wing.create(np.linspace(0.0, LENGTH, n), 0.5, 0.4, EI, GJ)
+    values = layout.wing_values(wing) | {"camber": np.zeros((n, 2)), "alpha": 0.0}
+    p = layout.pack(values | {"deformed_axis": 1.0})
+    p_sym, z = ca.MX.sym("p", layout.n_parameters), ca.MX.sym("z", 3 * n)
+    return layout, p, p_sym, z, ExactBeam(layout, p_sym, z)
+
+
+def _solve(layout, p, p_sym, z, load_rows, steps: int = 1) -> np.ndarray:  # type: ignore[no-untyped-def]
+    """z (3N,) where the structure rows plus `load_rows(scale)` vanish, by Newton's method with
+    CasADi's exact Jacobian, the load applied in `steps` equal increments."""
+    n = layout.n
+    scale = ca.MX.sym("scale")
+    rows = exact_structure_rows(layout, z, ca.DM(np.diff(np.linspace(0.0, LENGTH, n))))
+    residual = rows + ca.vertcat(ca.MX(3 + n - 1, 1), load_rows(scale))
+    function = ca.Function("r", [z, p_sym, scale], [residual, ca.jacobian(residual, z)])
+    state = np.zeros(3 * n)
+    for step in range(1, steps + 1):
+        for _ in range(50):
+            r, jacobian = (np.array(v) for v in function(state, p, step / steps))
+            state = state - np.linalg.solve(jacobian, r.ravel())
+            if np.max(np.abs(r)) < 1e-13:
+                break
+    return state
+
+
+@pytest.mark.parametrize(
+    "angle", [1.0, math.pi, 1.9 * math.pi], ids=["one_radian", "half_circle", "nearly_closed"]
+)
+def test_a_pure_end_moment_rolls_the_cantilever_into_a_circle(angle):
+    """M0 = EI angle / L everywhere: beta = M0 s / EI, the tip at (R sin(angle), R (1 -
+    cos(angle))), R = EI / M0. The rotations are integrated exactly (a constant curvature) and
+    each segment is the chord of its arc: the circle to round-off, at any N."""
+    n = 9
+    layout, p, p_sym, z, beam = _cantilever(n)
+    moment = EI * angle / LENGTH
+    state = _solve(
+        layout, p, p_sym, z, lambda scale: beam.rows(scale * moment * ca.DM.ones(n, 1), ca.MX(n, 1))
+    )
+    beta = state[n : 2 * n]
+    along, heave = reference_line(beta, np.diff(np.linspace(0.0, LENGTH, n)))
+    radius = EI / moment
+    s = np.linspace(0.0, LENGTH, n)
+    np.testing.assert_allclose(beta, moment * s / EI, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(along, radius * np.sin(s / radius), rtol=0, atol=1e-12 * LENGTH)
+    np.testing.assert_allclose(heave, radius * (1 - np.cos(s / radius)), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(state[:n], heave, rtol=0, atol=1e-12)  # the heave unknowns
+
+
+def _tip_under_load(n: int, load_parameter: float) -> tuple[float, float]:
+    """The tip's vertical deflection and horizontal retreat over L under a dead vertical tip
+    load P = load_parameter EI / L^2, applied on the tip strip at the deformed tip."""
+    layout, p, p_sym, z, beam = _cantilever(n)
+    m = layout.n_panels
+    force = load_parameter * EI / LENGTH**2
+    beta = z[n : 2 * n]
+    along, _ = reference_line(beta, ca.DM(np.diff(np.linspace(0.0, LENGTH, n))))
+
+    def load_rows(scale: ca.MX) -> ca.MX:
+        loads = [ca.MX(m, 1) for _ in range(LOADS + EXACT_LOADS)]
+        tip = ca.DM.zeros(m, 1)
+        tip[m - 1] = 1.0
+        # F = (0, 0, P) at r = (0, S_tip, u_tip): r x F = (S_tip P, 0, 0); e_c = x here.
+        loads[2] = scale * force * tip
+        loads[3] = scale * force * along[-1] * tip
+        loads[LOADS] = scale * force * along[-1] * tip
+        return beam.rows(*beam._internal(ca.vertcat(*loads), z))
+
+    state = _solve(layout, p, p_sym, z, load_rows, steps=10)
+    tip_along = float(reference_line(state[n : 2 * n], np.diff(np.linspace(0, LENGTH, n)))[0][-1])
+    return state[n - 1] / LENGTH, 1.0 - tip_along / LENGTH
+
+
+@pytest.mark.parametrize("load_parameter", list(BISSHOPP_DRUCKER), ids=lambda a: f"PL2_EI_{a:g}")
+def test_a_dead_tip_load_bends_the_cantilever_as_bisshopp_and_druckers_table(load_parameter):
+    """At N = 161 the discretisation's error (second order, below) is 2e-5 of L at most: the
+    table's five digits to 5e-5."""
+    vertical, retreat = _tip_under_load(161, load_parameter)
+    expected_vertical, expected_retreat = BISSHOPP_DRUCKER[load_parameter]
+    assert vertical == pytest.approx(expected_vertical, abs=5e-5)
+    assert retreat == pytest.approx(expected_retreat, abs=5e-5)
+
+
+def test_the_elastica_converges_at_second_order_in_the_station_spacing():
+    """P L^2 / EI = 5: each halving of the spacing divides the error in the tip's deflection by
+    4 (3.6 to 4.4), against the closed form itself (elliptic integrals, to 1e-12)."""
+    from scipy.optimize import brentq
+    from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
+
+    a = math.sqrt(5.0)
+
+    def gap(k: float) -> float:
+        return ellipk(k * k) - ellipkinc(math.asin(1 / (math.sqrt(2) * k)), k * k) - a
+
+    k = brentq(gap, 1 / math.sqrt(2) + 1e-15, 1 - 1e-15, xtol=1e-15)
+    phi = math.asin(1 / (math.sqrt(2) * k))
+    exact = 1 - 2 * (ellipe(k * k) - ellipeinc(phi, k * k)) / a
+    assert exact == pytest.approx(BISSHOPP_DRUCKER[5.0][0], abs=5e-6)
+    errors = [abs(_tip_under_load(n, 5.0)[0] - exact) for n in (11, 21, 41)]
+    for coarse, fine in itertools.pairwise(errors):
+        assert coarse / fine == pytest.approx(4.0, abs=0.4)
+
+
+# --- The exact beam in the coupled model ------------------------------------------------------
+
+EXACT = solver.SolverOptions(structure="geometrically_exact")
+LINEAR_DEFORMED_AXIS = solver.SolverOptions(torque_axis="deformed")
+
+
+def _study(scale: float) -> solver.Wing:
+    from tests.study import study_wing
+
+    return study_wing(30, scale)
+
+
+@pytest.mark.parametrize(
+    ("stiffness_scale", "tolerance"),
+    [(1e4, 1e-6), (1e3, 1e-5)],
+    ids=["tip_heave_1e-6_of_semispan", "tip_heave_1e-5_of_semispan"],
+)
+def test_in_the_small_deflection_limit_the_exact_beam_is_the_linear_one(stiffness_scale, tolerance):
+    """The study's wing made 1e3 and 1e4 times stiffer (tip heave 4e-5 and 4e-6 of the
+    semispan at 10 m/s): every term in which the two beams differ is of second order in the
+    deflection, so the answers agree to the relative deflection (the linear beam's torque about
+    the heaved axis, the exact beam's own)."""
+    from tests.study import flight
+
+    wing = _study(stiffness_scale)
+    exact = solver.solve(wing, flight(10.0), options=EXACT)
+    linear = solver.solve(wing, flight(10.0), options=LINEAR_DEFORMED_AXIS)
+    for name in ("heave", "slope", "twist", "bending_moment", "torque"):
+        ours, theirs = getattr(exact.stations, name), getattr(linear.stations, name)
+        assert np.max(np.abs(ours - theirs)) <= tolerance * np.max(np.abs(theirs)), name
+    assert exact.totals.lift == pytest.approx(linear.totals.lift, rel=tolerance)
+
+
+def test_the_answers_internal_loads_are_those_the_exact_rows_balance():
+    """At an exact equilibrium of a swept, dihedral, coupled wing bent to 10 % of its semispan,
+    the answer's bending moment and torque (computed anew from the panels' forces,
+    `exact_internal_loads`) integrate to its rotations and twists by the beam's rows, to the
+    residual's tolerance; its slope is sin(beta)."""
+    from solver.model.beam import coupled_trapezoid
+    from tests.study import flight
+
+    base = _study(1.0)
+    root = np.sqrt(base.bending_stiffness * base.torsional_stiffness)
+    wing = solver.Wing.create(
+        base.y,
+        base.chord,
+        0.4,
+        base.bending_stiffness,
+        base.torsional_stiffness,
+        sweep=20.0,
+        dihedral=4.0,
+        bending_torsion_coupling=0.2 * root,
+    )
+    answer = solver.solve(wing, flight(16.0), options=EXACT)
+    n = wing.n_stations
+    beta, phi = answer.state[n : 2 * n], answer.state[2 * n : 3 * n]
+    bending, torsion = coupled_trapezoid(
+        np.diff(wing.arc_length),
+        answer.stations.bending_moment,
+        answer.stations.torque,
+        (wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling),
+    )
+    np.testing.assert_allclose(np.diff(beta), -bending, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(np.diff(phi), -torsion, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(answer.stations.slope, np.sin(beta), rtol=1e-15)
+    assert answer.stations.heave[-1] > 0.02 * wing.semispan
+
+
+def test_a_bent_wing_lifts_less_vertically_and_pulls_its_tip_inboard():
+    """The lift follows the deformed surface: at the same state of a strongly bent wing
+    (study wing, 1/20 of its bending stiffness, 10 m/s: the tip heaves ~20 % of the semispan), the
+    exact beam's lattice, foreshortened, carries a spanwise force component pointing inboard
+    at the tip strips (the strips' normal tilts), and the tip station sits inboard of its jig
+    place by the foreshortening, S_tip < s_tip."""
+    from solver.statics.loads import panel_loads
+    from solver.statics.system import CoupledSystem
+    from tests.study import ALPHA, flight, study_arrays
+
+    arrays = study_arrays(30)
+    arrays["bending_stiffness"] = 0.05 * arrays["bending_stiffness"]
+    wing = solver.Wing.create(**arrays)
+    answer = solver.solve(wing, flight(10.0), options=EXACT)
+    system = CoupledSystem.of(wing, ALPHA, EXACT)
+    loads = panel_loads(system, answer.state, answer.dynamic_pressure)
+    n = wing.n_stations
+    assert answer.stations.heave[-1] > 0.15 * wing.semispan
+    tip_strips = slice(-5, None)
+    assert np.all(loads.force[1][tip_strips] < 0)  # in-plane, inboard
+    beta = answer.state[n : 2 * n]
+    along, heave = reference_line(beta, np.diff(wing.arc_length))
+    assert along[-1] < wing.arc_length[-1] - 0.5 * heave[-1] ** 2 / wing.arc_length[-1] * 0.5
+    np.testing.assert_allclose(loads.quarter_chord[1][-1], along[-1], atol=0.3 * wing.chord[-1])
