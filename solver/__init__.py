@@ -32,6 +32,7 @@ from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.dynamics.modes import natural_modes
 from solver.errors import (
     ConvergenceError,
+    FoldedWing,
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
@@ -187,6 +188,7 @@ __all__ = [
     "fit_divergence",
     "FitDivergence",
     "FlightCondition",
+    "FoldedWing",
     "FlightEnvelope",
     "FlightCase",
     "CaseInput",

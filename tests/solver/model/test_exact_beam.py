@@ -235,3 +235,32 @@ def test_a_bent_wing_lifts_less_vertically_and_pulls_its_tip_inboard():
     along, heave = reference_line(beta, np.diff(wing.arc_length))
     assert along[-1] < wing.arc_length[-1] - 0.5 * heave[-1] ** 2 / wing.arc_length[-1] * 0.5
     np.testing.assert_allclose(loads.quarter_chord[1][-1], along[-1], atol=0.3 * wing.chord[-1])
+
+
+def test_a_wing_folded_back_on_itself_is_a_typed_answer_naming_the_station():
+    """The study's wing with 1/500 of its bending stiffness at 10 m/s: its lift, following the
+    curling surface, turns the outer wing past vertical; the answer is `FoldedWing` (a
+    `NoEquilibrium`) naming the first station past 90 deg. With 1/200 it stands at ~77 deg, an
+    answer, without the large_deflection finding the linear beam raises there."""
+    from tests.study import flight, study_arrays
+
+    arrays = study_arrays(30)
+    arrays["bending_stiffness"] = 0.002 * arrays["bending_stiffness"]
+    with pytest.raises(solver.FoldedWing) as error:
+        solver.solve(solver.Wing.create(**arrays), flight(10.0), options=EXACT)
+    assert isinstance(error.value, solver.NoEquilibrium)
+    assert 0 < error.value.station < 30
+    assert error.value.rotation == pytest.approx(90.0, abs=5.0)
+    assert f"station {error.value.station}" in str(error.value)
+    arrays = study_arrays(30)
+    arrays["bending_stiffness"] = 0.005 * arrays["bending_stiffness"]
+    wing = solver.Wing.create(**arrays)
+    answer = solver.solve(wing, flight(10.0), options=EXACT)
+    assert answer.stations.heave[-1] > 0.5 * wing.semispan
+    assert "large_deflection" not in [finding.code for finding in answer.validity]
+    linear = solver.solve(study_wing_like(arrays, 0.05), flight(10.0))
+    assert "large_deflection" in [finding.code for finding in linear.validity]
+
+
+def study_wing_like(arrays: dict, scale: float) -> solver.Wing:  # type: ignore[type-arg]
+    return solver.Wing.create(**(arrays | {"bending_stiffness": arrays["bending_stiffness"] * scale / 0.005}))
