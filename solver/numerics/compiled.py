@@ -307,7 +307,8 @@ class CompiledModel:
         )
         r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p, *rates = control_outputs
         m, n = self.layout.n_panels, self.layout.n
-        loads_along, loads_control, loads_rate = (r.reshape(6, m) for r in rates[:3])
+        # The exact beam's two more load rows follow the six (`solver.model.exact_beam`).
+        loads_along, loads_control, loads_rate = (r.reshape(-1, m)[:6] for r in rates[:3])
         center_along, center_control = (r.reshape(m, 3).T for r in rates[3:5])
         leading_edge_along, quarter_chord_along = (r.reshape(n, 3).T for r in rates[5:])
         controls = ControlTerms(
