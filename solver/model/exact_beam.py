@@ -55,7 +55,13 @@ from solver.model.geometry import (
 )
 from solver.model.layout import Layout
 
-__all__ = ["EXACT_LOADS", "ExactBeam", "exact_internal_loads", "exact_structure_rows"]
+__all__ = [
+    "EXACT_LOADS",
+    "ExactBeam",
+    "axis_points",
+    "exact_internal_loads",
+    "exact_structure_rows",
+]
 
 EXACT_LOADS = 2  # per-panel rows the exact beam adds after the loads: (r x F) . e_c, (r x F) . n
 
@@ -162,3 +168,15 @@ def exact_internal_loads(
     about_axis = outboard(m_along) - heave * f_across_sum
     about_normal = outboard(m_normal) + along * f_across_sum
     return bending, np.cos(beta) * about_axis + np.sin(beta) * about_normal
+
+
+def axis_points(wing: Any, heave: np.ndarray, rotation: np.ndarray, exact: bool) -> np.ndarray:
+    """Numpy, for the answers: (3, N) [m] the deformed elastic axis's points in geometry axes:
+    on the exact beam's reference line (`rotation` beta [rad]), or the linear beam's jig axis
+    heaved normal to the wing's plane; the plane turned by the dihedral."""
+    arc = np.asarray(wing.arc_length, dtype=float)
+    along, normal = reference_line(rotation, np.diff(arc)) if exact else (arc, heave)
+    e_x, e_y = span_axis(wing)
+    x, y = e_x * along, e_y * along
+    cos, sin = np.cos(np.radians(wing.dihedral)), np.sin(np.radians(wing.dihedral))
+    return np.vstack([x, y * cos - normal * sin, y * sin + normal * cos])

@@ -16,7 +16,7 @@ import numpy as np
 
 from solver.inputs.spar import TubeSpar
 from solver.inputs.wing import Wing
-from solver.model.exact_beam import exact_internal_loads
+from solver.model.exact_beam import axis_points, exact_internal_loads
 from solver.model.geometry import (
     along_span,
     arc_length,
@@ -162,6 +162,8 @@ def equilibrium_loads(
     shear = outboard_sum(loads.per_strip(normal_force(force, wing), k))
     bending_moment = _bending_moment(wing, loads, k)
     torque = outboard_sum(loads.per_strip(loads.torque, k))
+    points = axis_points(wing, heave, slope, layout.exact)
+    rotation = np.degrees(slope)  # the exact beam's beta, the linear beam's small angle
     if layout.exact:  # exact statics about the deformed stations; slope: du/ds = sin(beta)
         bending_moment, torque = exact_internal_loads(wing, force, center, slope, k)
         slope = np.sin(slope)
@@ -181,6 +183,10 @@ def equilibrium_loads(
         torque=torque,
         bending_stiffness=wing.bending_stiffness,
         torsional_stiffness=wing.torsional_stiffness,
+        axis_x=points[0],
+        axis_y=points[1],
+        axis_z=points[2],
+        bending_rotation=rotation,
     )
     panels = Panels(
         y=loads.per_strip(in_wing_plane(center, wing)[1], k) / k,

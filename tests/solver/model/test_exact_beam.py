@@ -235,6 +235,16 @@ def test_a_bent_wing_lifts_less_vertically_and_pulls_its_tip_inboard():
     along, heave = reference_line(beta, np.diff(wing.arc_length))
     assert along[-1] < wing.arc_length[-1] - 0.5 * heave[-1] ** 2 / wing.arc_length[-1] * 0.5
     np.testing.assert_allclose(loads.quarter_chord[1][-1], along[-1], atol=0.3 * wing.chord[-1])
+    # The answer's deformed axis: the reference line (unswept, flat: y = S, z = u), and the
+    # rotations in degrees.
+    stations = answer.stations
+    np.testing.assert_allclose(stations.axis_y, along, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(stations.axis_z, heave, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(stations.axis_z, stations.heave, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(stations.bending_rotation, np.degrees(beta), rtol=1e-15)
+    linear = solver.solve(wing, flight(10.0))
+    np.testing.assert_array_equal(linear.stations.axis_y, wing.y)
+    np.testing.assert_array_equal(linear.stations.axis_z, linear.stations.heave)
 
 
 def test_a_wing_folded_back_on_itself_is_a_typed_answer_naming_the_station():
