@@ -201,25 +201,6 @@ class Wing:
         default=None,
         compiled=True,
     )
-    bending_torsion_coupling: np.ndarray = parameter(
-        "N m^2",
-        "bending-torsion coupling stiffness K of the section (the K23 term of a composite or "
-        "built-up section: aeroelastic tailoring): the section's moments are M = EI kappa + K "
-        "theta' and T = K kappa + GJ theta' (kappa = d2u/ds2, curvature bending the tip up; "
-        "theta' = dphi/ds, twist rate nose up). Positive K: bending the tip up twists the "
-        "section nose down (washes it out), twisting it nose up bends it down. |K| < "
-        "sqrt(EI GJ) at every station (the section's stiffness positive definite); default 0 "
-        "(uncoupled)",
-        ge=-1e12,
-        le=1e12,
-        why="within the stiffnesses' own range; the section's positive definiteness is checked "
-        "against EI and GJ",
-        per_station=True,
-        default=0.0,
-        example=0.0,
-        compiled=True,
-        kw_only=True,
-    )
     spar: TubeSpar | None = parameter(
         "",
         "a tube spar EI and GJ follow from, instead of bending_stiffness and "
@@ -275,6 +256,25 @@ class Wing:
         default=0.0,
         example=2.0,
         compiled=True,
+    )
+    bending_torsion_coupling: np.ndarray = parameter(
+        "N m^2",
+        "bending-torsion coupling stiffness K of the section (the K23 term of a composite or "
+        "built-up section: aeroelastic tailoring): the section's moments are M = EI kappa + K "
+        "theta' and T = K kappa + GJ theta' (kappa = d2u/ds2, curvature bending the tip up; "
+        "theta' = dphi/ds, twist rate nose up). Positive K: bending the tip up twists the "
+        "section nose down (washes it out), twisting it nose up bends it down. |K| < "
+        "sqrt(EI GJ) at every station (the section's stiffness positive definite); default 0 "
+        "(uncoupled)",
+        ge=-1e12,
+        le=1e12,
+        why="within the stiffnesses' own range; the section's positive definiteness is checked "
+        "against EI and GJ",
+        per_station=True,
+        default=0.0,
+        example=0.0,
+        compiled=True,
+        kw_only=True,
     )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
