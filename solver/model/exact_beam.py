@@ -6,8 +6,8 @@ axis, in the same unknowns, rows and CasADi Newton system as the linear beam
 The formulation is the inextensible, unsheared limit of Reissner's finite-strain beam in the
 plane (E. Reissner, "On one-dimensional finite-strain beam theory: the plane problem", ZAMP 23,
 1972; the elastica of Bisshopp and Drucker, Q. Appl. Math. 3, 1945), displacement based, with
-the torsion of the deformed axis added (Hodges, "Nonlinear Composite Beam Theory", AIAA 2006,
-ch. 5: the twist rate about the deformed tangent as the torsional strain, small warping):
+the torsion of the deformed axis added (as in Hodges, "Nonlinear Composite Beam Theory", AIAA
+2006: the twist rate about the deformed tangent as the torsional strain, small warping):
 
 - The slope unknown is the section's bending rotation beta [rad] (exactly u'(s) = sin beta; the
   linear model's du/ds to first order): the axis's tangent t = cos(beta) e_s + sin(beta) n, e_s
@@ -31,7 +31,8 @@ ch. 5: the twist rate about the deformed tangent as the torsional strain, small 
 In the small-deflection limit every term that differs from the linear beam (with the torque
 about the heaved axis) is of second order in the deflection. A wing folded back on itself
 (|beta| past 90 degrees at a station, the axis turning back toward the root) has no streamwise
-sections: the answers refuse it naming the station (`solver.statics.validity`).
+sections: the answers refuse it naming the station (`solver.statics.verdict`,
+`solver.errors.FoldedWing`).
 
 Unknowns, rows and parameter slots are the linear beam's (`solver.model.layout`); the panel loads
 carry two more rows for it, (r x F) . e_c and (r x F) . n per panel (`EXACT_LOADS`, after the
