@@ -408,3 +408,21 @@ def test_about_the_jig_the_exact_beams_flutter_is_the_linear_beams():
     assert linear is not None and exact is not None
     assert exact.velocity == pytest.approx(linear.velocity, rel=1e-6)
     assert exact.frequency == pytest.approx(linear.frequency, rel=1e-6)
+
+
+def test_a_starting_deformation_from_an_exact_answer_starts_at_its_rotations():
+    """An `InitialGuess` carries du/ds (an answer's `stations.slope`, sin(beta) under the exact
+    beam): the exact beam starts from arcsin of it, so the answer's own deformation as a start
+    gives back the same equilibrium (1e-9 of the semispan) on the branch from the jig."""
+    from solver import InitialGuess
+    from tests.study import flight
+
+    wing = _soft_study_wing()
+    answer = solver.solve(wing, flight(9.0), options=EXACT)
+    stations = answer.stations
+    guess = InitialGuess(
+        heave=tuple(stations.heave), twist=tuple(stations.axis_twist), slope=tuple(stations.slope)
+    )
+    again = solver.solve(wing, flight(9.0), guess, options=EXACT)
+    assert again.stability.branch == "jig"
+    np.testing.assert_allclose(again.stations.heave, stations.heave, atol=1e-9 * wing.semispan)
