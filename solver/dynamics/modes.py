@@ -153,8 +153,12 @@ class Structure:
         return omega2, right, left / scale
 
 
-def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
-    """The cantilever of `wing` with `mass` (`Structure`).
+def structure(
+    wing: Wing, mass: MassModel | None = None, rows: np.ndarray | None = None
+) -> Structure:
+    """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
+    Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
+    tangent about a bent state, `solver.model.exact_beam`).
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
@@ -172,7 +176,7 @@ def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
     sweep = wing.sweep * DEG
     arc = wing.y / math.cos(sweep)
     beam = _Beam(
-        arc, wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
+        arc, wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling, rows
     )
     inertia = section_inertia(mass, wing.chord, wing.elastic_axis, wing.sweep, wing.spar)
     strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia)
@@ -242,8 +246,10 @@ class _Beam:
         bending: np.ndarray,
         torsion: np.ndarray,
         coupling: np.ndarray | None = None,
+        rows: np.ndarray | None = None,
     ) -> None:
         self.arc, self.h = arc, np.diff(arc)
+        self.rows = rows
         coupling = np.zeros_like(bending) if coupling is None else coupling
         self.stiffness = (bending, torsion, coupling)
         self.torsion_compliance, self.cross = section_compliance(bending, torsion, coupling)[1:]
@@ -290,7 +296,10 @@ class _Beam:
         return np.hstack([force_rows, np.vstack([bending_rows, torque_rows])])
 
     def structure_rows(self) -> np.ndarray:
-        """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg])."""
+        """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg]) (the
+        tangent given, if one was)."""
+        if self.rows is not None:
+            return np.array(self.rows, dtype=float)
         n, m, h = self.n, self.n - 1, self.h
         a = np.zeros((3 * n, 3 * n))
         a[0, 0] = a[1, n] = a[2, 2 * n] = 1.0  # clamps

@@ -452,3 +452,32 @@ def test_a_stiff_wings_free_roll_is_the_linear_beams_under_the_exact_beam():
         for structure in ("linear", "geometrically_exact")
     ]
     assert rates[1] == pytest.approx(rates[0], rel=1e-6)
+
+
+def test_flutter_about_a_bent_wing_takes_the_exact_beams_tangent_structure():
+    """/flutter under the exact beam rebuilds the structure about each state from J0's
+    structure rows there (`solver.dynamics.flutter._tangent`): about the jig it is the linear
+    beam's (stiffness to 1e-12), about a wing bent to 20 % of its semispan its stiffness differs
+    (the heave kinematics' cos(beta): 1e-3 to 1e-1 of it), and the linear beam's is the same
+    about every state."""
+    from solver.dynamics.flutter import _tangent
+    from solver.dynamics.modes import structure
+    from solver.inputs.mass import MassModel
+    from solver.statics.jig import at_rest
+    from solver.statics.system import CoupledSystem
+    from tests.study import ALPHA, flight
+
+    wing = _soft_study_wing()
+    mass = MassModel.create(30, 1.0, 0.45, 0.05)
+    linear_beam = structure(wing, mass)
+    system = CoupledSystem.of(wing, ALPHA, EXACT)
+    at_jig = _tangent(linear_beam, mass, system, at_rest(system).evaluation)
+    scale = np.abs(linear_beam.stiffness).max()
+    np.testing.assert_allclose(at_jig.stiffness, linear_beam.stiffness, rtol=0, atol=1e-12 * scale)
+    bent = solver.solve(wing, flight(10.0), options=EXACT)
+    assert bent.stations.heave[-1] > 0.15 * wing.semispan
+    about_bent = _tangent(linear_beam, mass, system, system.evaluate(bent.state))
+    change = np.abs(about_bent.stiffness - linear_beam.stiffness).max() / scale
+    assert 1e-3 < change < 1e-1
+    linear_system = CoupledSystem.of(wing, ALPHA, solver.SolverOptions())
+    assert _tangent(linear_beam, mass, linear_system, system.evaluate(bent.state)) is linear_beam
