@@ -22,6 +22,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope
 from solver import (
     ConvergenceError,
     DynamicInstability,
+    FoldedWing,
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
@@ -206,6 +207,16 @@ def _finite_or_none(value: float | None) -> float | None:
 # problem here and nowhere else (the worker passes the error itself along).
 SOLVER_PROBLEMS: dict[type[Exception], Callable[[Any], Problem]] = {
     InvalidInput: lambda e: Problem.invalid([FieldError(e.field or "body", e.reason)]),
+    FoldedWing: lambda e: Problem(
+        "no-equilibrium",
+        str(e),
+        extensions={
+            "velocity": e.velocity,
+            "fold_velocity": None,
+            "station": e.station,
+            "field": f"stations[{e.station}]",
+        },
+    ),
     NoEquilibrium: lambda e: Problem(
         "no-equilibrium",
         str(e),

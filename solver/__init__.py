@@ -33,6 +33,7 @@ from solver.dynamics.modes import natural_modes
 from solver.errors import (
     ConvergenceError,
     DynamicInstability,
+    FoldedWing,
     InfeasibleDesign,
     InvalidInput,
     NoEquilibrium,
@@ -213,6 +214,7 @@ __all__ = [
     "fit_divergence",
     "FitDivergence",
     "FlightCondition",
+    "FoldedWing",
     "FlightEnvelope",
     "FlightCase",
     "CaseInput",

@@ -99,6 +99,28 @@ class NoEquilibrium(SolverError):
         return type(self), (self.velocity, self.fold_velocity, self.detail, self.where)
 
 
+class FoldedWing(NoEquilibrium):
+    """The geometrically exact beam's equilibrium turns the wing back on itself: a station's
+    bending rotation reaches 90 deg (the axis vertical, then pointing back toward the root),
+    where the model's streamwise sections cannot be placed (`solver.model.exact_beam`).
+
+    Attributes (besides `NoEquilibrium`'s): station: the first such station's index; y: [m] its
+    jig position; rotation: [deg] its bending rotation there.
+    """
+
+    def __init__(self, velocity: float, station: int, y: float, rotation: float) -> None:
+        self.station, self.y, self.rotation = station, y, rotation
+        where = (
+            f"the wing folds back on itself at station {station} (y = {y:.4g} m): its bending "
+            f"rotation {rotation:.4g} deg reaches 90 deg, past which streamwise sections "
+            "cannot be placed"
+        )
+        super().__init__(velocity, None, where=where)
+
+    def __reduce__(self) -> tuple[type, tuple[float, int, float, float]]:  # type: ignore[override]
+        return type(self), (self.velocity, self.station, self.y, self.rotation)
+
+
 class InfeasibleDesign(SolverError):
     """A design problem without an acceptable optimum.
 

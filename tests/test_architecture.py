@@ -25,6 +25,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["model.layout"],
     ["model.geometry", "model.horseshoe"],
     ["model.vlm", "model.flow_vlm", "model.aerodynamics", "model.beam"],
+    ["model.exact_beam"],
     ["model.strip", "model.symbols"],
     ["model.induced"],
     ["model.flow"],

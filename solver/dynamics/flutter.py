@@ -218,7 +218,7 @@ def flutter(
     check_over_airspeeds(alpha, load_factor, True)
     states = States(wing, density, alpha, lift, options, load_factor)
     with numerical_failures_as(float(speeds[0])):
-        basis, build = _model(beam, states, options, settings, count)
+        basis, build = _model(beam, states, options, settings, count, mass)
         grid = _grid(speeds)
         states.prepare(grid, float(speeds.max()))
         tracked = _follow(basis, states, build, grid, speeds, density, settings, progress)
@@ -233,6 +233,7 @@ def _model(
     options: SolverOptions,
     settings: FlutterOptions,
     count: int,
+    mass: MassModel | None = None,
 ) -> tuple[Basis, Build]:
     """The basis and how the equations on it are built about a state, for the aerodynamics
     `options` names (module docstring)."""
@@ -243,8 +244,9 @@ def _model(
         basis = _basis(beam, unsteady_aerodynamics(beam, layout, rest).stiffness(), q_div, count)
 
         def theodorsen(system: CoupledSystem, evaluation: Evaluation) -> TheodorsenEquations:
-            aero = unsteady_aerodynamics(beam, system.layout, evaluation)
-            return TheodorsenEquations.of(beam, basis, aero)
+            about = _tangent(beam, mass, system, evaluation)
+            aero = unsteady_aerodynamics(about, system.layout, evaluation)
+            return TheodorsenEquations.of(about, basis, aero)
 
         return basis, theodorsen
     jig = panels(states.wing, layout.chordwise)
@@ -254,10 +256,25 @@ def _model(
     wake = shed_wake(jig, nodes / semichord)
 
     def lattice(system: CoupledSystem, evaluation: Evaluation) -> LatticeEquations:
-        loads = lattice_loads(beam, system.layout, evaluation, jig)
-        return LatticeEquations.of(beam, basis, loads, wake, semichord)
+        about = _tangent(beam, mass, system, evaluation)
+        loads = lattice_loads(about, system.layout, evaluation, jig)
+        return LatticeEquations.of(about, basis, loads, wake, semichord)
 
     return basis, lattice
+
+
+def _tangent(
+    beam: Structure, mass: MassModel | None, system: CoupledSystem, evaluation: Evaluation
+) -> Structure:
+    """The structure linearised about the state `evaluation` holds: under the geometrically
+    exact beam its tangent there (J0's structure rows: the bent wing's heave kinematics, its
+    stiffness and the states of the degrees of freedom; the mass and the rows' loads are the
+    linear beam's), else `beam`, the linear beam's, the same about every state."""
+    layout = system.layout
+    if not layout.exact:
+        return beam
+    rows = evaluation.jacobian0[layout.structure_rows, layout.structure]
+    return structure(beam.wing, mass, rows=rows)
 
 
 def _basis(beam: Structure, aerodynamic: np.ndarray, q_div: float | None, count: int) -> Basis:

@@ -47,6 +47,7 @@ import scipy.linalg
 from solver.errors import ConvergenceError, InvalidInput
 from solver.inputs.mass import MassModel, section_inertia
 from solver.inputs.wing import Wing
+from solver.model.beam import coupled_trapezoid, section_compliance
 from solver.model.geometry import DEG
 from solver.results.flutter import ModeShape, NaturalModes
 
@@ -152,8 +153,12 @@ class Structure:
         return omega2, right, left / scale
 
 
-def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
-    """The cantilever of `wing` with `mass` (`Structure`).
+def structure(
+    wing: Wing, mass: MassModel | None = None, rows: np.ndarray | None = None
+) -> Structure:
+    """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
+    Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
+    tangent about a bent state, `solver.model.exact_beam`).
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
@@ -170,7 +175,9 @@ def structure(wing: Wing, mass: MassModel | None = None) -> Structure:
         )
     sweep = wing.sweep * DEG
     arc = wing.y / math.cos(sweep)
-    beam = _Beam(arc, wing.bending_stiffness, wing.torsional_stiffness)
+    beam = _Beam(
+        arc, wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling, rows
+    )
     inertia = section_inertia(mass, wing.chord, wing.elastic_axis, wing.sweep, wing.spar)
     strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia)
     m = wing.n_stations - 1
@@ -233,22 +240,26 @@ class _Beam:
     """The static model's beam rows as matrices (`solver.model.residual._Beam` and
     `_structure_rows`): internal loads, load rows, deformation."""
 
-    def __init__(self, arc: np.ndarray, bending: np.ndarray, torsion: np.ndarray) -> None:
+    def __init__(
+        self,
+        arc: np.ndarray,
+        bending: np.ndarray,
+        torsion: np.ndarray,
+        coupling: np.ndarray | None = None,
+        rows: np.ndarray | None = None,
+    ) -> None:
         self.arc, self.h = arc, np.diff(arc)
-        self.bending, self.torsion = bending, torsion
+        self.rows = rows
+        coupling = np.zeros_like(bending) if coupling is None else coupling
+        self.stiffness = (bending, torsion, coupling)
+        self.torsion_compliance, self.cross = section_compliance(bending, torsion, coupling)[1:]
         self.n = arc.shape[0]
 
     def load_rows(self, moment: np.ndarray, torque: np.ndarray) -> np.ndarray:
         """(2(N-1), c) the bending and torsion rows' load terms of station moments and torques
-        (N, c): -h_i/2 (M_i/EI_i + M_{i+1}/EI_{i+1}) and the same of T/GJ in degrees."""
-
-        def trapezoid(values: np.ndarray, stiffness: np.ndarray, scale: float) -> np.ndarray:
-            per = values / stiffness[:, None]
-            return -scale * self.h[:, None] / 2 * (per[:-1] + per[1:])
-
-        return np.vstack(
-            [trapezoid(moment, self.bending, 1.0), trapezoid(torque, self.torsion, DEG_PER_RAD)]
-        )
+        (N, c): -h_i/2 (M_i/EI_i + M_{i+1}/EI_{i+1}) and the same of T/GJ in degrees, with the
+        bending-torsion coupling's (`solver.model.beam.coupled_trapezoid`)."""
+        return np.vstack(coupled_trapezoid(self.h, moment, torque, self.stiffness))
 
     def strip_load_rows(self) -> np.ndarray:
         """(2(N-1), 2(N-1)) load rows of unit strip loads: a vertical force at each strip's
@@ -275,13 +286,20 @@ class _Beam:
         moment = np.maximum(self.arc[station] - self.arc, 0.0)[:, None]
         force_rows = self.load_rows(moment, np.zeros((self.n, 1)))
         inboard = np.arange(self.n - 1) < station
-        per = 1.0 / self.torsion
+        per = 1.0 / self.torsion_compliance
         torque_rows = np.zeros((self.n - 1, 1))
         torque_rows[inboard, 0] = -DEG_PER_RAD * self.h[inboard] / 2 * (per[:-1] + per[1:])[inboard]
-        return np.hstack([force_rows, np.vstack([np.zeros((self.n - 1, 1)), torque_rows])])
+        # The coupling's bending of the same torque, on the same segments (zero when uncoupled).
+        bending_rows = np.zeros((self.n - 1, 1))
+        cross = self.cross
+        bending_rows[inboard, 0] = self.h[inboard] / 2 * (cross[:-1] + cross[1:])[inboard]
+        return np.hstack([force_rows, np.vstack([bending_rows, torque_rows])])
 
     def structure_rows(self) -> np.ndarray:
-        """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg])."""
+        """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg]) (the
+        tangent given, if one was)."""
+        if self.rows is not None:
+            return np.array(self.rows, dtype=float)
         n, m, h = self.n, self.n - 1, self.h
         a = np.zeros((3 * n, 3 * n))
         a[0, 0] = a[1, n] = a[2, 2 * n] = 1.0  # clamps

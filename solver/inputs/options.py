@@ -238,6 +238,18 @@ class SolverOptions:
         choices=("lattice", "strip", "unsteady_lattice"),
         default="lattice",
     )
+    structure: Literal["linear", "geometrically_exact"] = parameter(
+        "",
+        "the beam: 'linear' (the design study's small-deflection beam, the default) or "
+        "'geometrically_exact' (finite bending rotations in the plane of the elastic axis and "
+        "the wing's normal and torsion about the deformed axis, Reissner's inextensible "
+        "elastica: the lattice sits on the deformed wing, its loads follow it, the torque is "
+        "about the deformed axis; `stations.slope` is then the sine of the bending rotation, "
+        "still du/ds). For wings that bend past the large_deflection finding's limits",
+        form="choice",
+        choices=("linear", "geometrically_exact"),
+        default="linear",
+    )
 
     def __post_init__(self) -> None:
         _limits(SolverOptions, self)
@@ -245,6 +257,8 @@ class SolverOptions:
             raise InvalidInput("validity", "must be a solver.ValidityLimits")
         if self.aerodynamics not in ("lattice", "strip", "unsteady_lattice"):
             raise InvalidInput("aerodynamics", "must be 'lattice', 'strip' or 'unsteady_lattice'")
+        if self.structure not in ("linear", "geometrically_exact"):
+            raise InvalidInput("structure", "must be 'linear' or 'geometrically_exact'")
 
 
 def require_flow_model(aerodynamics: str) -> None:

@@ -257,6 +257,25 @@ class Wing:
         example=2.0,
         compiled=True,
     )
+    bending_torsion_coupling: np.ndarray = parameter(
+        "N m^2",
+        "bending-torsion coupling stiffness K of the section (the K23 term of a composite or "
+        "built-up section: aeroelastic tailoring): the section's moments are M = EI kappa + K "
+        "theta' and T = K kappa + GJ theta' (kappa = d2u/ds2, curvature bending the tip up; "
+        "theta' = dphi/ds, twist rate nose up). Positive K: bending the tip up twists the "
+        "section nose down (washes it out), twisting it nose up bends it down. |K| < "
+        "sqrt(EI GJ) at every station (the section's stiffness positive definite); default 0 "
+        "(uncoupled)",
+        ge=-1e12,
+        le=1e12,
+        why="within the stiffnesses' own range; the section's positive definiteness is checked "
+        "against EI and GJ",
+        per_station=True,
+        default=0.0,
+        example=0.0,
+        compiled=True,
+        kw_only=True,
+    )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
         "the sections' camber lines: one for every station or one per station (N), each a "
@@ -353,6 +372,11 @@ class Wing:
                 normal[name] = _checked(name, stiffness, declared[name], n)
             else:
                 normal[name] = fields.stations(name, stiffness, n)
+        _check_definite(
+            normal["bending_stiffness"],
+            normal["torsional_stiffness"],
+            normal["bending_torsion_coupling"],
+        )
         if mass is not None:
             mass = MassModel.resolved(mass, n)
         surfaces = validate_surfaces(given.get("control_surfaces"), y_arr)
@@ -429,6 +453,19 @@ def _default(cls: type, name: str) -> Any:
     if field.default is dataclasses.MISSING:
         raise InvalidInput(name, "is required")
     return field.default
+
+
+def _check_definite(ei: np.ndarray, gj: np.ndarray, coupling: np.ndarray) -> None:
+    """Refuse a section whose 2 x 2 stiffness [[EI, K], [K, GJ]] is not positive definite
+    (K^2 >= EI GJ: a section that bends or twists for free), naming its station."""
+    bad = np.flatnonzero(coupling * coupling >= ei * gj)
+    if bad.size:
+        i = int(bad[0])
+        raise InvalidInput(
+            f"bending_torsion_coupling[{i}]",
+            f"|K| = {abs(coupling[i]):.6g} N m^2 must stay below sqrt(EI GJ) = "
+            f"{math.sqrt(ei[i] * gj[i]):.6g} N m^2 (the section's stiffness positive definite)",
+        )
 
 
 def _checked(name: str, value: Any, spec: fields.Spec, n: int) -> Any:

@@ -11,7 +11,8 @@ functions exactly (`ca.jacobian`); the induced velocities' derivatives come from
 Per-panel loads, in this order, each M rows (`LOADS` of them): Fx, Fy, Fz [m^2 per unit q], the
 normal force times its arm along the elastic axis, Fn (r . e_s), and the torque about the axis,
 (r x F) . e_s [m^3 per unit q] (`solver.model.geometry`'s beam kinematics); the flow model adds
-(r x F) . e_x [m^3 per unit q], the rolling moment about x (row block `ROLL`).
+(r x F) . e_x [m^3 per unit q], the rolling moment about x (row block `ROLL`); the
+geometrically exact beam's (`solver.model.exact_beam`) adds (r x F) . e_c and (r x F) . n, last.
 """
 
 from __future__ import annotations
@@ -21,7 +22,15 @@ from typing import Any
 
 import casadi as ca
 
-from solver.model.geometry import DEG, Lattice, along_span, lattice, normal_force
+from solver.model.geometry import (
+    DEG,
+    Lattice,
+    along_span,
+    in_wing_plane,
+    lattice,
+    normal_force,
+    span_axis,
+)
 from solver.model.layout import Layout, Parameters
 
 __all__ = [
@@ -72,7 +81,12 @@ def _rows(matrix: ca.SX) -> tuple[ca.SX, ca.SX, ca.SX]:
 
 
 def panel_loads(
-    lat: Lattice, g: ca.SX, wing: Any, induced: ca.SX, roll_rate: ca.SX | None = None
+    lat: Lattice,
+    g: ca.SX,
+    wing: Any,
+    induced: ca.SX,
+    roll_rate: ca.SX | None = None,
+    exact: bool = False,
 ) -> tuple[ca.SX, ca.SX]:
     """Per-panel forces per unit q (Kutta-Joukowski F = rho (V_local x l) Gamma = 2 q (V_hat_local
     x l) g) and their moments about the elastic axis: ((3, M) force [m^2], (5M,) loads); with a
@@ -103,13 +117,19 @@ def panel_loads(
     )
     if roll_rate is not None:
         loads = ca.vertcat(loads, moment[0, :].T)
+    if exact:
+        # The geometrically exact beam's two more moments (`solver.model.exact_beam`), last:
+        # about e_c = e_s x n (across the axis, in the wing's plane) and about the normal n.
+        m_x, m_y, m_normal = in_wing_plane(_rows(moment), wing)
+        cos, sin = span_axis(wing)[1], span_axis(wing)[0]
+        loads = ca.vertcat(loads, (m_x * cos - m_y * sin).T, m_normal.T)
     return force, loads
 
 
 def wing_lattice(layout: Layout, z: ca.SX, wing: Any) -> Lattice:
     """The lattice at the beam's unknowns z = [u; u'; phi] (3N,)."""
     n = layout.n
-    return lattice(z[:n], z[n : 2 * n], z[2 * n :], wing, layout.chordwise)
+    return lattice(z[:n], z[n : 2 * n], z[2 * n :], wing, layout.chordwise, exact=layout.exact)
 
 
 # The symbolic pieces are pure functions of the mesh: each of the three compiled functions uses
@@ -155,7 +175,7 @@ def aero_function(layout: Layout, with_jacobians: bool, flow: bool = False) -> c
     induced_forces = ca.SX.sym("induced_forces", 3 * m)
     lat = wing_lattice(layout, z, wing)
     rate = wing.roll_rate if flow else None
-    _, loads = panel_loads(lat, g, wing, induced_forces, rate)
+    _, loads = panel_loads(lat, g, wing, induced_forces, rate, layout.exact)
     v_collocation = onset(wing.alpha, lat.collocation, rate) + ca.reshape(induced_tangency, 3, m)
     tangency = ca.sum1(v_collocation * lat.normal).T
     outputs = [tangency, loads]
@@ -191,7 +211,8 @@ def panel_forces_function(layout: Layout, flow: bool = False) -> ca.Function:
     z, g = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m)
     induced = ca.SX.sym("induced", 3 * m)
     lat = wing_lattice(layout, z, wing)
-    force, loads = panel_loads(lat, g, wing, induced, wing.roll_rate if flow else None)
+    rate = wing.roll_rate if flow else None
+    force, loads = panel_loads(lat, g, wing, induced, rate, layout.exact)
     outputs = [force, loads[4 * m : 5 * m].T, lat.quarter_chord]
     if flow:
         outputs.append(lat.leading_edge)

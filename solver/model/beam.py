@@ -8,6 +8,13 @@ h_i = s_{i+1} - s_i the segment lengths along the axis (`solver.model.geometry.a
     torsion (N-1)            phi_{i+1} - phi_i
                                - h_i (180/pi)(T_i/GJ_i + T_{i+1}/GJ_{i+1}) / 2 = 0           [deg]
 
+With a bending-torsion coupling stiffness K_i (`Wing.bending_torsion_coupling`) the section's
+moments are [M; T] = [[EI, K], [K, GJ]] [u''; phi'] (phi' in rad/m), and the rows integrate its
+compliance instead: u'' = M/EI* - c T, phi' = T/GJ* - c M, with EI* = EI - K^2/GJ,
+GJ* = GJ - K^2/EI and c = K/(EI GJ - K^2) (`section_compliance`). Positive K: bending the tip up
+(M > 0) twists the section nose down, a washout. At K = 0, EI* and GJ* are EI and GJ to the
+bit and the coupling terms add signed zeros: the rows are the uncoupled ones to the last digit.
+
 Internal loads by outboard sums over every panel p of the strips outboard of station i, with F_p
 its force at its deformed force point r_p, Fn_p its component normal to the wing's plane, e_s
 the elastic axis's direction and s_i station i's distance along it (the beam's kinematics,
@@ -32,7 +39,14 @@ import numpy as np
 from solver.model.geometry import arc_length, axis_force, normal_force
 from solver.model.layout import Layout
 
-__all__ = ["DEG_PER_RAD", "Beam", "outboard_sum", "structure_rows"]
+__all__ = [
+    "DEG_PER_RAD",
+    "Beam",
+    "coupled_trapezoid",
+    "outboard_sum",
+    "section_compliance",
+    "structure_rows",
+]
 
 DEG_PER_RAD = 180.0 / np.pi
 
@@ -49,6 +63,41 @@ def outboard_sum(strip_rows: ca.MX) -> ca.MX:
         running = running + strip_rows[j, :]
         rows.append(running)
     return ca.vertcat(*reversed(rows))
+
+
+def section_compliance(ei: Any, gj: Any, coupling: Any) -> tuple[Any, Any, Any]:
+    """The section's compliance [[EI, K], [K, GJ]]^-1 as (EI*, GJ*, c): its diagonal's
+    inverses EI* = EI - K^2/GJ and GJ* = GJ - K^2/EI [N m^2] and its off-diagonal's negative
+    c = K/(EI GJ - K^2) [1/(N m^2)], so that u'' = M/EI* - c T and phi' = T/GJ* - c M. Numpy
+    arrays or CasADi columns (N,) alike; at K = 0, EI* and GJ* are EI and GJ to the bit."""
+    square = coupling * coupling
+    return ei - square / gj, gj - square / ei, coupling / (ei * gj - square)
+
+
+def coupled_trapezoid(
+    h: Any, bending: Any, torque: Any, wing_stiffness: tuple[Any, Any, Any]
+) -> tuple[Any, Any]:
+    """Numpy: the bending and torsion rows' load terms (N-1, ...) of station moments and torques
+    (N, ...) [N m]: -h_i/2 (f_i + f_{i+1}) of f = M/EI* - c T and degrees(T/GJ* - c M)
+    (`section_compliance`; `wing_stiffness` its EI, GJ, K (N,)). Each uncoupled part is
+    evaluated as the uncoupled rows are, the coupling's added after: at K = 0 the rows are
+    the uncoupled ones to the bit."""
+    ei, gj, coupling = wing_stiffness
+    ei_eff, gj_eff, cross = section_compliance(ei, gj, coupling)
+    shape = (-1,) + (1,) * (np.ndim(bending) - 1)
+
+    def trapezoid(values: Any, stiffness: Any, scale: float) -> Any:
+        per = values / np.reshape(stiffness, shape)
+        return -scale * np.reshape(h, shape) / 2 * (per[:-1] + per[1:])
+
+    def cross_term(values: Any, scale: float) -> Any:
+        per = values * np.reshape(cross, shape)
+        return scale * np.reshape(h, shape) / 2 * (per[:-1] + per[1:])
+
+    return (
+        trapezoid(bending, ei_eff, 1.0) + cross_term(torque, 1.0),
+        trapezoid(torque, gj_eff, DEG_PER_RAD) + cross_term(bending, DEG_PER_RAD),
+    )
 
 
 def _scale_rows(factors: ca.MX, matrix: ca.MX) -> ca.MX:
@@ -68,7 +117,9 @@ class Beam:
         self.wing = wing
         self.s = arc_length(wing)  # [m] along the EA
         self.h = self.s[1:] - self.s[:-1]
-        self.ei, self.gj = wing.bending_stiffness, wing.torsional_stiffness
+        self.ei, self.gj, self.cross = section_compliance(
+            wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
+        )
         k, strips = layout.chordwise, layout.n_strips
         # Panels to strips: strip i holds panels i k .. i k + k - 1.
         self.strips = ca.sparsify(ca.DM(np.kron(np.eye(strips), np.ones((1, k)))))
@@ -97,14 +148,25 @@ class Beam:
         return self.outboard(loads, 4) - deformed * heave * self.axis_force(loads)
 
     def rows(self, bending: ca.MX, torque: ca.MX) -> ca.MX:
-        """(2(N-1), c): -h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) for M/EI and degrees(T/GJ)."""
+        """(2(N-1), c): -h_i/2 (f_i/K_i + f_{i+1}/K_{i+1}) for M/EI* and degrees(T/GJ*), and
+        the coupling's +h_i/2 (c_i g_i + c_{i+1} g_{i+1}) of the other load (T in the bending
+        rows, M in the torsion rows; `section_compliance`)."""
 
         def trapezoid(integrand: ca.MX, stiffness: ca.MX, scale: float) -> ca.MX:
             inner = -scale * self.h / (2 * stiffness[:-1])
             outer = -scale * self.h / (2 * stiffness[1:])
             return _scale_rows(inner, integrand[:-1, :]) + _scale_rows(outer, integrand[1:, :])
 
-        return ca.vertcat(trapezoid(bending, self.ei, 1.0), trapezoid(torque, self.gj, DEG_PER_RAD))
+        def coupling(other: ca.MX, scale: float) -> ca.MX:
+            # Signed zeros at K = 0: added to the uncoupled rows, they leave them to the bit.
+            inner = scale * self.h * self.cross[:-1] / 2
+            outer = scale * self.h * self.cross[1:] / 2
+            return _scale_rows(inner, other[:-1, :]) + _scale_rows(outer, other[1:, :])
+
+        return ca.vertcat(
+            trapezoid(bending, self.ei, 1.0) + coupling(torque, 1.0),
+            trapezoid(torque, self.gj, DEG_PER_RAD) + coupling(bending, DEG_PER_RAD),
+        )
 
     def load_rows(self, loads: ca.MX, heave: ca.MX, deformed: ca.MX) -> ca.MX:
         """(2(N-1), c) the q-proportional part of the bending and torsion equations, or

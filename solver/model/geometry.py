@@ -52,6 +52,8 @@ __all__ = [
     "in_wing_plane",
     "lattice",
     "normal_force",
+    "reference_line",
+    "segment_chords",
     "span_axis",
     "streamwise_twist",
 ]
@@ -133,6 +135,38 @@ def axis_force(force: Vector, wing: Any) -> Any:
     return x * cos - y * sin
 
 
+def _sinc(x: Any) -> Any:
+    """sin(x)/x, smooth through 0 (its Taylor series below 1e-3: error < 1e-19)."""
+    small = x * x
+    series = 1 - small / 6 + small * small / 120
+    if isinstance(x, ca.SX | ca.MX):
+        symbol: Any = x
+        safe_symbol: Any = ca.if_else(symbol == 0, 1, symbol)
+        return ca.if_else(ca.fabs(symbol) < 1e-3, series, ca.sin(symbol) / safe_symbol)
+    x = np.asarray(x, dtype=float)
+    safe = np.where(x == 0.0, 1.0, x)
+    return np.where(np.abs(x) < 1e-3, series, np.sin(safe) / safe)
+
+
+def segment_chords(beta: Any, h: Any) -> tuple[Any, Any]:
+    """(N-1,) the segments' chords along the jig axis and the normal [m], of rotations beta (N,)
+    [rad] and lengths h (N-1,) [m]: h sinc(db/2) (cos b, sin b) (`solver.model.exact_beam`)."""
+    cos: Any = ca.cos if isinstance(beta, ca.SX | ca.MX) else np.cos
+    sin: Any = ca.sin if isinstance(beta, ca.SX | ca.MX) else np.sin
+    middle = (beta[:-1] + beta[1:]) / 2
+    length = h * _sinc((beta[1:] - beta[:-1]) / 2)
+    return length * cos(middle), length * sin(middle)
+
+
+def reference_line(beta: Any, h: Any) -> tuple[Any, Any]:
+    """(N,) S_i, u_i [m]: the deformed axis's stations along the jig axis and the normal, from
+    the root (a running sum of `segment_chords`)."""
+    along, normal = segment_chords(beta, h)
+    if isinstance(beta, ca.SX | ca.MX):
+        return ca.vertcat(0, ca.cumsum(along)), ca.vertcat(0, ca.cumsum(normal))
+    return np.concatenate([[0.0], np.cumsum(along)]), np.concatenate([[0.0], np.cumsum(normal)])
+
+
 def _turned(points: ca.SX, cos: ca.SX, sin: ca.SX) -> ca.SX:
     """(3, n) points or directions turned about the x axis: R_x(dihedral) points."""
     y, z = points[1, :], points[2, :]
@@ -185,7 +219,29 @@ def _span_axes(le_y: ca.SX, le_z: ca.SX) -> tuple[ca.SX, ca.SX, ca.SX]:
     return axis_y, axis_z, scale
 
 
-def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattice:
+def _exact_leading_edges(
+    heave: ca.SX, beta: ca.SX, wing: Any, ea_offset: ca.SX, cos_t: ca.SX, sin_t: ca.SX
+) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """The leading edges on the exact beam's reference line: the elastic-axis point at
+    S_i e_s + u_i n, the chord's offset -x_ea c (cos t, 0, -sin t) turned about the deformed
+    axis's y-z direction (a_y, a_z) (Rodrigues: (-x_ea c cos t, -x_ea c a_z sin t,
+    x_ea c a_y sin t))."""
+    s = arc_length(wing)
+    along, _ = reference_line(beta, s[1:] - s[:-1])
+    cos_sweep, sin_sweep = _cos_sin(wing.sweep)
+    tangent_y, tangent_z = ca.cos(beta) * cos_sweep, ca.sin(beta)
+    norm = ca.sqrt(tangent_y**2 + tangent_z**2)
+    axis_y, axis_z = tangent_y / norm, tangent_z / norm
+    return (
+        along * sin_sweep - ea_offset * cos_t,
+        along * cos_sweep - ea_offset * axis_z * sin_t,
+        heave + ea_offset * axis_y * sin_t,
+    )
+
+
+def lattice(
+    heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int, exact: bool = False
+) -> Lattice:
     """The deformed lattice of the compiled model's parameters `wing` (`Layout.unpack`).
 
     Args:
@@ -195,6 +251,10 @@ def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattic
             camber / chord at the chordwise nodes, station-major; sweep [deg] of the elastic
             axis, positive aft; dihedral [deg] of the wing's plane, tips up.
         k: chordwise panels.
+        exact: the geometrically exact beam's placement (`solver.model.exact_beam`): slope is
+            the bending rotation beta [rad], the elastic-axis points sit on its reference line
+            (foreshortened: y_i = S_i cos(sweep)), and each section's chord turns by its twist
+            about the deformed axis's direction in the y-z plane instead of the global y axis.
     """
     y, chord, elastic_axis = wing.y, wing.chord, wing.elastic_axis
     n = y.shape[0]
@@ -202,9 +262,12 @@ def lattice(heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int) -> Lattic
     twist = streamwise_twist(phi, slope, wing.jig_twist, wing.sweep) * DEG
     cos_t, sin_t = ca.cos(twist), ca.sin(twist)
     ea_offset = chord * elastic_axis
-    le_x = y * ca.tan(wing.sweep * DEG) - ea_offset * cos_t
-    le_y = y
-    le_z = ea_offset * sin_t + heave
+    if exact:
+        le_x, le_y, le_z = _exact_leading_edges(heave, slope, wing, ea_offset, cos_t, sin_t)
+    else:
+        le_x = y * ca.tan(wing.sweep * DEG) - ea_offset * cos_t
+        le_y = y
+        le_z = ea_offset * sin_t + heave
     axis_y, axis_z, scale = _span_axes(le_y, le_z)
     # Chord axis: x turned by the twist about the local span axis (Rodrigues, axis_x = 0); up
     # axis: (x cross span axis) turned likewise, times the scale.

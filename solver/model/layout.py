@@ -22,8 +22,10 @@ by name (`Layout.unpack`, numeric or CasADi-symbolic alike). A new compiled wing
 declared once, on the wing, and takes its slot by itself; the model version (`solver.model.version`)
 digests the table, so a library compiled for another table is never loaded.
 
-The aerodynamics (`Layout.aerodynamics`) changes what the tangency rows say, never where
-anything sits: "lattice" (the horseshoe lattice, every panel seeing every horseshoe) or "strip"
+The aerodynamics (`Layout.aerodynamics`) and the beam (`Layout.beam`: "linear" or
+"geometrically_exact", `solver.model.exact_beam`, whose slope unknown is the bending rotation
+beta [rad]) change what the rows say, never where anything sits. The aerodynamics: "lattice"
+(the horseshoe lattice, every panel seeing every horseshoe) or "strip"
 (strip theory: each strip a two-dimensional airfoil, `solver.model.strip`).
 """
 
@@ -43,6 +45,7 @@ from solver.inputs.wing import Wing
 
 __all__ = [
     "AERODYNAMICS",
+    "STRUCTURES",
     "FLOW_SLOTS",
     "MODEL_OWN",
     "MODEL_SLOTS",
@@ -51,10 +54,13 @@ __all__ = [
     "Layout",
     "Parameters",
     "Slot",
+    "Structure",
 ]
 
 Aerodynamics = Literal["lattice", "strip"]
 AERODYNAMICS: tuple[Aerodynamics, ...] = ("lattice", "strip")
+Structure = Literal["linear", "geometrically_exact"]
+STRUCTURES: tuple[Structure, ...] = ("linear", "geometrically_exact")
 
 # How many numbers a slot holds: one per station (N), the camber's N (k + 1) (station-major:
 # station i's k + 1 chordwise nodes at i (k + 1) ..), one, or one per unknown (3N + M).
@@ -172,6 +178,13 @@ class Layout:
     n: int
     chordwise: int = 1
     aerodynamics: Aerodynamics = "lattice"
+    beam: Structure = "linear"
+
+    @property
+    def exact(self) -> bool:
+        """The geometrically exact beam (`solver.model.exact_beam`): the slope unknown is the
+        bending rotation [rad], the heave's kinematics and the load rows exact."""
+        return self.beam == "geometrically_exact"
 
     @property
     def n_panels(self) -> int:
@@ -190,7 +203,8 @@ class Layout:
     def tag(self) -> str:
         """The mesh's name in the compiled functions' names: N_k, and _strip for strip theory."""
         strip = "_strip" if self.aerodynamics == "strip" else ""
-        return f"{self.n}_{self.chordwise}{strip}"
+        exact = "_exact" if self.exact else ""
+        return f"{self.n}_{self.chordwise}{strip}{exact}"
 
     # Unknowns
     @property
@@ -348,7 +362,9 @@ class Layout:
         _deprecated("Layout.parameters(...)", "Layout.pack({name: value, ...})")
         positional: tuple[str, ...] = ("y", "chord", "elastic_axis", "bending_stiffness")
         positional += ("torsional_stiffness", "jig_twist")
-        values: dict[str, Any] = {slot.name: _default(slot.name) for slot in WING_SLOTS}
+        values: dict[str, Any] = {
+            slot.name: np.full(self.size(slot), _default(slot.name)) for slot in WING_SLOTS
+        }
         values |= dict(zip(positional, arrays, strict=True))
         values |= {"sweep": sweep_deg, "camber": camber, "alpha": alpha_deg}
         return self.pack(values | {"deformed_axis": 1.0 if deformed_axis else 0.0})

@@ -37,6 +37,7 @@ import numpy as np
 
 import solver.model.aerodynamics as aerodynamics_module
 import solver.model.beam as beam_module
+import solver.model.exact_beam as exact_beam_module
 import solver.model.flow as flow_module
 import solver.model.flow_vlm as flow_vlm_module
 import solver.model.geometry as geometry_module
@@ -52,7 +53,7 @@ from solver.model.aerodynamics import (
     panel_forces_function,
     stations_function,
 )
-from solver.model.beam import DEG_PER_RAD, structure_rows
+from solver.model.beam import DEG_PER_RAD
 from solver.model.flow import flow_outputs
 from solver.model.flow_vlm import flow_induced_velocities
 from solver.model.geometry import DEG
@@ -109,6 +110,7 @@ MODEL_VERSION = _graph_source_digest(
     flow_vlm_module,
     aerodynamics_module,
     beam_module,
+    exact_beam_module,
     strip_module,
     symbols_module,
     induced_module,
@@ -185,7 +187,7 @@ def build_coupled_function(layout: Layout, flow: bool = False) -> ca.Function:
     tangency_x = tangency_w + normal_ind_t_x
     loads_x = loads_w + ca.mtimes(loads_ind, ind_f_x)
     r0, r1 = sym.residual(tangency, loads)
-    structure = structure_rows(layout, sym.x, sym.beam.h)
+    structure = sym.structure_rows()
     heave_columns = ca.DM(np.eye(n, nx))
     j0_structure = ca.jacobian(structure, sym.x)
     j1_loads = sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, deformed, heave_columns)

@@ -13,6 +13,7 @@ import casadi as ca
 
 from solver.model.aerodynamics import ROLL, aero_function, lattice_function
 from solver.model.beam import Beam, structure_rows
+from solver.model.exact_beam import ExactBeam, exact_structure_rows
 from solver.model.flow_vlm import flow_normal_source_columns, flow_source_columns
 from solver.model.geometry import DEG
 from solver.model.layout import Layout
@@ -36,7 +37,9 @@ class Symbols:
         self.z = self.x[layout.structure]
         self.heave = self.x[layout.heave]
         self.circulation = self.x[layout.circulation]
-        self.beam = Beam(layout, self.parameters)
+        self.beam = (
+            ExactBeam(layout, self.p, self.z) if layout.exact else Beam(layout, self.parameters)
+        )
         # The horseshoe of panel p induces nothing of its bound leg at its own force point.
         self.all_bound_legs = ca.DM.ones(self.m, self.m)
         self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
@@ -64,10 +67,15 @@ class Symbols:
         columns = flow_source_columns(m) if self.flow else source_columns(m)
         return columns(field, weights, left, right, g_row, *image)
 
+    def structure_rows(self) -> ca.MX:
+        """The beam's load-free rows (3N,): the linear beam's, or the exact beam's."""
+        rows = exact_structure_rows if self.layout.exact else structure_rows
+        return rows(self.layout, self.x, self.beam.h)
+
     def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
         """r0 and r1 from the aerodynamic outputs."""
         n_strips = self.layout.n_strips
-        r0 = ca.vertcat(structure_rows(self.layout, self.x, self.beam.h), tangency)
+        r0 = ca.vertcat(self.structure_rows(), tangency)
         r1 = ca.vertcat(
             ca.MX(3 + n_strips, 1),
             self.beam.load_rows(loads, self.heave, self.parameters.deformed_axis),

@@ -152,7 +152,8 @@ def _library_path(layout: Layout, flow: bool = False) -> Path:
     casadi_version = ca.__version__  # type: ignore[attr-defined]
     flags = "".join(_flags(_compiler())).replace("-", "_")
     strip = "-strip" if layout.aerodynamics == "strip" else ""  # the lattice's names unchanged
-    mesh = f"n{layout.n}-k{layout.chordwise}{strip}"
+    exact = "-exact" if layout.exact else ""
+    mesh = f"n{layout.n}-k{layout.chordwise}{strip}{exact}"
     model = f"model{MODEL_VERSION}" + ("-flow" if flow else "")
     tag = f"{mesh}-{model}-casadi{casadi_version}-{platform.machine()}{flags}"
     return cache_dir() / f"flexwing-{tag}.so"
@@ -306,7 +307,8 @@ class CompiledModel:
         )
         r0_c, r1_c, lift_c, roll, roll_x, roll_c, r0_p, r1_p, roll_p, *rates = control_outputs
         m, n = self.layout.n_panels, self.layout.n
-        loads_along, loads_control, loads_rate = (r.reshape(6, m) for r in rates[:3])
+        # The exact beam's two more load rows follow the six (`solver.model.exact_beam`).
+        loads_along, loads_control, loads_rate = (r.reshape(-1, m)[:6] for r in rates[:3])
         center_along, center_control = (r.reshape(m, 3).T for r in rates[3:5])
         leading_edge_along, quarter_chord_along = (r.reshape(n, 3).T for r in rates[5:])
         controls = ControlTerms(

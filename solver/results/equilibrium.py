@@ -84,6 +84,23 @@ class Stations:
         "lies aft of the elastic axis); null without",
         default=None,
     )
+    axis_x: np.ndarray | None = quantity(
+        "m",
+        "the deformed elastic axis's points in geometry axes (x aft, y right, z up; the wing's "
+        "plane turned by its dihedral): x. Under options.structure 'geometrically_exact' the "
+        "bent reference line (a bent wing's stations move inboard); under 'linear' the jig "
+        "axis heaved normal to the plane. Static answers (null in a roll answer)",
+        default=None,
+    )
+    axis_y: np.ndarray | None = quantity("m", "the deformed elastic axis's points: y", default=None)
+    axis_z: np.ndarray | None = quantity("m", "the deformed elastic axis's points: z", default=None)
+    bending_rotation: np.ndarray | None = quantity(
+        "deg",
+        "the section's bending rotation about the axis across the elastic axis in the wing's "
+        "plane, tip up > 0: the exact beam's rotation beta (slope = sin(beta)), the linear "
+        "beam's small-angle degrees(slope). Static answers (null in a roll answer)",
+        default=None,
+    )
 
 
 @dataclass(frozen=True, eq=False)

@@ -27,7 +27,9 @@ FindingCode = Literal[
 FINDING_CODES: dict[FindingCode, str] = {
     "large_deflection": (
         "the heave (over the semispan) or the bending slope exceeds its limit: the beam is "
-        "linear, for small displacements, and keeps each station at its jig span position"
+        "linear, for small displacements, and keeps each station at its jig span position; "
+        "options.structure = 'geometrically_exact' models finite deflections (and does not "
+        "raise this finding)"
     ),
     "large_twist": (
         "the twist about the elastic axis exceeds its limit: the beam's torsion is linear, with "

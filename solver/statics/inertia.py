@@ -39,7 +39,7 @@ import numpy as np
 
 from solver.inputs.mass import MassModel
 from solver.inputs.wing import Wing
-from solver.model.beam import DEG_PER_RAD
+from solver.model.beam import coupled_trapezoid
 from solver.model.geometry import arc_length, in_wing_plane
 from solver.model.layout import Layout
 from solver.numerics.cache import cached
@@ -111,15 +111,10 @@ def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoad
         torque[inboard] += -weight * item.mass * item.offset
         total += 2 * item.mass
     rows = np.zeros(layout.n_unknowns)
-    rows[layout.bending_rows] = _trapezoid(h, bending, wing.bending_stiffness, 1.0)
-    rows[layout.torsion_rows] = _trapezoid(h, torque, wing.torsional_stiffness, DEG_PER_RAD)
+    stiffness = (wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling)
+    rows[layout.bending_rows], rows[layout.torsion_rows] = coupled_trapezoid(
+        h, bending, torque, stiffness
+    )
     for array in (shear, bending, torque, rows):
         array.setflags(write=False)
     return InertialLoads(shear, bending, torque, rows, total)
-
-
-def _trapezoid(h: np.ndarray, load: np.ndarray, stiffness: np.ndarray, scale: float) -> np.ndarray:
-    """(N-1,) -scale h_i / 2 (f_i / K_i + f_{i+1} / K_{i+1}): a load's term in the beam's rows
-    (`solver.model.beam.Beam.rows`)."""
-    per = load / stiffness
-    return -scale * h / 2 * (per[:-1] + per[1:])

@@ -16,6 +16,7 @@ import numpy as np
 
 from solver.inputs.spar import TubeSpar
 from solver.inputs.wing import Wing
+from solver.model.exact_beam import axis_points, exact_internal_loads
 from solver.model.geometry import (
     along_span,
     arc_length,
@@ -161,7 +162,12 @@ def equilibrium_loads(
     shear = outboard_sum(loads.per_strip(normal_force(force, wing), k))
     bending_moment = _bending_moment(wing, loads, k)
     torque = outboard_sum(loads.per_strip(loads.torque, k))
-    if system.deformed_axis:
+    points = axis_points(wing, heave, slope, layout.exact)
+    rotation = np.degrees(slope)  # the exact beam's beta, the linear beam's small angle
+    if layout.exact:  # exact statics about the deformed stations; slope: du/ds = sin(beta)
+        bending_moment, torque = exact_internal_loads(wing, force, center, slope, k)
+        slope = np.sin(slope)
+    elif system.deformed_axis:
         across = axis_force(force, wing)
         torque = torque - heave * outboard_sum(loads.per_strip(across, k))
     strip_torque = loads.per_strip(loads.torque, k)
@@ -177,6 +183,10 @@ def equilibrium_loads(
         torque=torque,
         bending_stiffness=wing.bending_stiffness,
         torsional_stiffness=wing.torsional_stiffness,
+        axis_x=points[0],
+        axis_y=points[1],
+        axis_z=points[2],
+        bending_rotation=rotation,
     )
     panels = Panels(
         y=loads.per_strip(in_wing_plane(center, wing)[1], k) / k,

@@ -78,6 +78,10 @@ def solve(
     if isinstance(initial_guess, InitialGuess):
         with prefixed("initial_guess"):
             initial_guess = initial_guess.state(wing.n_stations, options.chordwise_panels)
+            if options.structure == "geometrically_exact":  # its slope unknown: the rotation
+                n = wing.n_stations
+                slope = initial_guess[n : 2 * n]
+                initial_guess[n : 2 * n] = np.arcsin(np.clip(slope, -1.0, 1.0))
     if flight.alpha is None:
         if initial_guess is not None:
             raise InvalidInput(

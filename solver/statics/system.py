@@ -21,7 +21,7 @@ from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
 from solver.inputs.options import SolverOptions, require_flow_model
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
-from solver.model.layout import Aerodynamics, Layout
+from solver.model.layout import Aerodynamics, Layout, Structure
 from solver.numerics.branch_points import branch_scales
 from solver.numerics.cache import cached, model_for
 from solver.numerics.compiled import CompiledModel
@@ -87,6 +87,8 @@ class CoupledSystem:
     # proportion to q (every point of the path from q = 0 to q* balances q/q* of both the lift
     # and the inertial load; at q* the flight's). 0: no inertial load (`solver.statics.inertia`).
     load_per_q: float = 0.0
+    # The beam (`solver.model.exact_beam`): "linear" or "geometrically_exact".
+    structure: Structure = "linear"
 
     @classmethod
     def of(
@@ -102,6 +104,7 @@ class CoupledSystem:
             options.torque_axis == "deformed",
             aerodynamics,
             flow,
+            structure=options.structure,
         )
 
     def with_inertia(self, load_factor: float | None, dynamic_pressure: float) -> CoupledSystem:
@@ -153,7 +156,7 @@ class CoupledSystem:
 
     @cached_property
     def layout(self) -> Layout:
-        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics)
+        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics, self.structure)
 
     @cached_property
     def model(self) -> CompiledModel:
@@ -231,7 +234,9 @@ class CoupledSystem:
     def model_key(self) -> tuple:  # type: ignore[type-arg]
         """The identity of the wing as modelled, whatever the alpha: what the wing at rest and
         its linear divergence are cached by (the flow's only when it is not the symmetric)."""
-        key = (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)
+        key: tuple = (self.wing.key, self.chordwise, self.deformed_axis, self.aerodynamics)  # type: ignore[type-arg]
+        if self.structure != "linear":
+            key = (*key, self.structure)
         return key if self.flow == SYMMETRIC else (*key, self.flow.key)
 
     @property
@@ -245,6 +250,8 @@ class CoupledSystem:
             self.deformed_axis,
             self.aerodynamics,
         )
+        if self.structure != "linear":
+            key = (*key, self.structure)
         if self.load_per_q != 0.0:
             key = (*key, "inertia", self.load_per_q)
         return key if self.flow == SYMMETRIC else (*key, self.flow.key)

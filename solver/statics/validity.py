@@ -8,7 +8,8 @@ how much wash-in develops". Its equations have answers far past where those idea
 stands (`Equilibrium.validity`, codes and meanings in `solver.results.findings.FINDING_CODES`):
 
 - large_deflection: |heave| / semispan or |du/ds| beyond `ValidityLimits.heave_fraction` or
-  `.slope`, at the stations where it is;
+  `.slope`, at the stations where it is; its message points to the geometrically exact beam
+  (`options.structure`), under which it is not raised;
 - large_twist: |twist about the elastic axis| beyond `.twist`;
 - section_stall: a strip's section lift coefficient, its lift per unit (jig) span over q and its
   mean chord, cl = lift_per_span / (q (c_i + c_i+1) / 2), beyond the airfoil's maximum
@@ -115,6 +116,12 @@ def _span(y: np.ndarray, indices: np.ndarray) -> str:
     return f"at y = {first:.3g} m" if indices.size == 1 else f"from y = {first:.3g} to {last:.3g} m"
 
 
+_EXACT_BEAM = (
+    "options.structure = 'geometrically_exact' models finite deflections and rotations "
+    "(the large_deflection finding is then not raised)"
+)
+
+
 def _deflection(wing: Wing, stations: Stations, limits: ValidityLimits) -> list[Finding]:
     found = []
     fraction = stations.heave / wing.semispan
@@ -129,7 +136,7 @@ def _deflection(wing: Wing, stations: Stations, limits: ValidityLimits) -> list[
                 f"({stations.heave[worst]:.3g} m at y = {stations.y[worst]:.3g} m), beyond the "
                 f"{100 * limits.heave_fraction:.3g} % up to which a linear, small-displacement "
                 "beam holds; it is above that "
-                f"{_span(stations.y, exceeded.indices)}.",
+                f"{_span(stations.y, exceeded.indices)}. {_EXACT_BEAM}",
                 "heave_fraction",
                 "stations",
                 exceeded,
@@ -150,7 +157,7 @@ def _deflection(wing: Wing, stations: Stations, limits: ValidityLimits) -> list[
                 f"The bending slope reaches {slope:.3g} ({math.degrees(math.atan(slope)):.3g} deg) "
                 f"at y = {stations.y[worst]:.3g} m, beyond the {limits.slope:.3g} up to which the "
                 "linear beam's small-angle kinematics hold; it is above that "
-                f"{_span(stations.y, exceeded.indices)}.",
+                f"{_span(stations.y, exceeded.indices)}. {_EXACT_BEAM}",
                 "slope",
                 "stations",
                 exceeded,
@@ -356,7 +363,8 @@ def assess(
     `evaluation`: r0, r1, J0, J1 at x. Reads them only."""
     wing = system.wing
     return [
-        *_deflection(wing, stations, limits),
+        # The exact beam models finite deflections: no small-deflection finding.
+        *([] if system.layout.exact else _deflection(wing, stations, limits)),
         *_twist(stations, limits),
         *_stall(wing, panels, flight.dynamic_pressure, limits),
         *_near_divergence(system, flight, x, evaluation, stability, limits),

@@ -3,11 +3,13 @@ it leaves the model's validity."""
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Literal
 
 import numpy as np
 
+from solver.errors import FoldedWing
 from solver.inputs.flight import OperatingPoint, velocity_for
 from solver.inputs.options import SolverOptions
 from solver.numerics.evaluation import Evaluation
@@ -65,6 +67,7 @@ def judge(
     (`solver.statics.validity`) read the answer only.
     """
     q = flight.dynamic_pressure
+    _representable(system, flight, x)
     if rigid is None:
         at_alpha = jig(system)
         rigid, unloaded = at_alpha.rigid, at_alpha.unloaded
@@ -94,3 +97,22 @@ def judge(
             system, flight, options.validity, x, evaluation, stations, panels, stability
         ),
     )
+
+
+# [rad] the largest bending rotation the exact beam's answers place streamwise sections at: 90
+# deg less a round-off's margin (the section's span axis is the axis's y-z direction, which
+# vanishes at 90 deg on an unswept wing).
+_FOLDED = math.pi / 2 - 1e-6
+
+
+def _representable(system: CoupledSystem, flight: OperatingPoint, x: np.ndarray) -> None:
+    """Refuse an exact beam's state folded back on itself (`solver.errors.FoldedWing`), naming
+    the first station whose |bending rotation| reaches 90 deg."""
+    layout = system.layout
+    if not layout.exact:
+        return
+    beyond = np.flatnonzero(np.abs(x[layout.slope]) >= _FOLDED)
+    if beyond.size:
+        i = int(beyond[0])
+        rotation = math.degrees(float(x[layout.slope][i]))
+        raise FoldedWing(flight.velocity, i, float(system.wing.y[i]), rotation)

@@ -171,3 +171,22 @@ def test_evenly_spaced_stations_from_the_semispan(client: httpx.Client) -> None:
     response = client.post("/solve", json=body)
     assert response.status_code == 200
     assert response.json()["totals"]["lift"] == pytest.approx(304.13, abs=0.01)
+
+
+def test_a_wing_folded_back_on_itself_is_a_problem_naming_the_station(client: httpx.Client) -> None:
+    """Under the geometrically exact beam, the study's wing with 1/500 of its bending stiffness
+    curls past vertical at 10 m/s: 422 no-equilibrium naming the station, not a failure; with
+    1/200 it answers, its tip above 70 % of the semispan."""
+    body = study.solve_request(10.0, options={"structure": "geometrically_exact"})
+    wing = body["wing"]
+    body["wing"] = wing | {"bending_stiffness": [0.002 * v for v in wing["bending_stiffness"]]}
+    response = client.post("/solve", json=body)
+    assert response.status_code == 422, response.text
+    problem = response.json()
+    assert problem["type"] == "/problems/no-equilibrium"
+    assert 0 < problem["station"] < 30 and problem["field"] == f"stations[{problem['station']}]"
+    assert f"station {problem['station']}" in problem["detail"]
+    body["wing"] = wing | {"bending_stiffness": [0.005 * v for v in wing["bending_stiffness"]]}
+    answer = _solve(client, body)
+    assert answer["stations"]["heave"][-1] > 0.7 * 5.0
+    assert answer["stations"]["axis_y"][-1] < 0.8 * 5.0

@@ -137,16 +137,24 @@ def test_the_structure_rows_are_the_compiled_models():
     )
 
 
+@pytest.mark.parametrize("coupling", [0.0, 0.4], ids=["uncoupled", "bending_torsion_coupled"])
 @pytest.mark.parametrize("aerodynamics", ["lattice", "strip"])
-def test_the_load_rows_are_the_compiled_models(aerodynamics: str):
+def test_the_load_rows_are_the_compiled_models(aerodynamics: str, coupling: float):
     """At a deformed, loaded state (a swept, tapered wing with 2 chordwise panels), the
     trapezoid rows of the panels' own loads (moments of the vertical forces at their force
     points' arms along the axis, torques about the axis) are the model's r1 load rows, to
-    round-off."""
+    round-off; with a bending-torsion coupling K = `coupling` sqrt(EI GJ) too."""
     n = 9
     chord = np.linspace(1.2, 0.6, n)
+    ei, gj = 4e4 * chord**3, 2e3 * chord**3
     wing = solver.Wing.create(
-        np.linspace(0, 5, n), chord, 0.35, 4e4 * chord**3, 2e3 * chord**3, sweep=20.0
+        np.linspace(0, 5, n),
+        chord,
+        0.35,
+        ei,
+        gj,
+        sweep=20.0,
+        bending_torsion_coupling=coupling * np.sqrt(ei * gj),
     )
     system = CoupledSystem(wing, 4.0, 2, aerodynamics=aerodynamics)
     layout = system.layout
@@ -165,7 +173,9 @@ def test_the_load_rows_are_the_compiled_models(aerodynamics: str):
         [np.sum(force[2][strip_of >= i] * (arm[strip_of >= i] - arc[i])) for i in range(n)]
     )
     twist_torque = np.array([np.sum(torque[0][strip_of >= i]) for i in range(n)])
-    beam = _Beam(arc, wing.bending_stiffness, wing.torsional_stiffness)
+    beam = _Beam(
+        arc, wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
+    )
     rows = beam.load_rows(moment[:, None], twist_torque[:, None])[:, 0]
     r1 = system.residual(x)[1][layout.load_rows]
     np.testing.assert_allclose(rows, r1, rtol=1e-12, atol=1e-14 * np.abs(r1).max())

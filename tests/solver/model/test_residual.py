@@ -77,6 +77,31 @@ SYSTEMS = {
     "strip_swept_k3_deformed_axis": lambda: CoupledSystem(
         _swept_cambered_twisted(), 4.0, 3, True, "strip"
     ),
+    # The geometrically exact beam (solver.model.exact_beam), at rotations up to 0.6 rad.
+    "exact_swept_k3": lambda: CoupledSystem(
+        _swept_cambered_twisted(), 4.0, 3, structure="geometrically_exact"
+    ),
+    "exact_coupled_dihedral": lambda: CoupledSystem(
+        solver.Wing.create(
+            np.linspace(0, 3, 7),
+            0.8,
+            0.45,
+            1e4,
+            900.0,
+            sweep=-20.0,
+            dihedral=6.0,
+            bending_torsion_coupling=800.0,
+        ),
+        5.0,
+        2,
+        structure="geometrically_exact",
+    ),
+    "exact_antisymmetric_rolling_k3": lambda: CoupledSystem(
+        _with_surfaces(), 0.0, 3, False, flow=ROTATION, structure="geometrically_exact"
+    ),
+    "exact_strip_tapered_forward_ea": lambda: CoupledSystem(
+        tapered_forward_ea(), 6.0, aerodynamics="strip", structure="geometrically_exact"
+    ),
 }
 
 
@@ -85,7 +110,8 @@ def _deformed_state(system: CoupledSystem, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
     x = np.zeros(layout.n_unknowns)
     x[layout.heave] = rng.uniform(-0.2, 0.2, n)  # [m]
-    x[layout.slope] = rng.uniform(-0.05, 0.05, n)  # [-]
+    rotation = 0.6 if layout.exact else 0.05  # the exact beam's slope: its rotation [rad]
+    x[layout.slope] = rng.uniform(-rotation, rotation, n)  # [-]
     x[layout.twist] = rng.uniform(-5.0, 5.0, n)  # [deg]
     x[layout.circulation] = rng.uniform(0.0, 0.1, layout.n_panels)  # [m]
     return x
