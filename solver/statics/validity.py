@@ -118,7 +118,7 @@ def _span(y: np.ndarray, indices: np.ndarray) -> str:
 
 _EXACT_BEAM = (
     "options.structure = 'geometrically_exact' models finite deflections and rotations "
-    "(the large_deflection finding is then not raised)"
+    "(the large_deflection finding is then not raised)."
 )
 
 
