@@ -43,7 +43,7 @@ from solver.optimization.report import (
     ACTIVE,
     Entry,
     constraint_value,
-    efficiency,
+    optimal_design,
     stability_value,
     worst_violation,
 )
@@ -56,7 +56,6 @@ from solver.results.design import (
 )
 from solver.results.equilibrium import Equilibrium
 from solver.statics.solve import solve
-from solver.statics.trefftz import trefftz_drag
 from solver.statics.trim import MAX_TRIM_ALPHA
 
 __all__ = ["optimize_cases"]
@@ -327,30 +326,17 @@ def _report(
             )
     equilibrium = equilibria[0]
     jig, wall = first.split(v)
-    lift = equilibrium.totals.lift
-    near, far = equilibrium.totals.induced_drag, trefftz_drag(equilibrium)
-    objective = {
-        "induced_drag": near,
-        "trefftz_drag": far,
-        "spar_mass": equilibrium.totals.spar_mass or 0.0,
-    }[problem.objective] + float(points[0].values["penalty"][0])
-    q, semispan = problem.dynamic_pressure, wing.semispan
-    return OptimalDesign(
-        wing=optimal_wing,
-        jig_twist=jig,
-        control_points=None if problem.control_points is None else v[: first.n_twist].copy(),
-        wall_thickness=None if wall is None else wall.copy(),
-        objective=problem.objective,
-        objective_value=objective,
-        induced_drag=near,
-        trefftz_drag=far,
-        span_efficiency=efficiency(lift, q, semispan, near),
-        trefftz_span_efficiency=efficiency(lift, q, semispan, far),
-        spar_mass=equilibrium.totals.spar_mass,
-        constraints=values,
-        equilibrium=equilibrium,
-        rigid=rigid,
-        optimizer=info,
+    return optimal_design(
+        problem,
+        optimal_wing,
+        None if problem.control_points is None else v[: first.n_twist].copy(),
+        jig,
+        None if wall is None else wall.copy(),
+        equilibrium,
+        float(points[0].values["penalty"][0]),
+        values,
+        rigid,
+        info,
         cases=[
             _case_result(space.flight, found)
             for space, found in zip(cases.spaces, equilibria, strict=True)

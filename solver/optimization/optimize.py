@@ -45,13 +45,13 @@ from solver.optimization.report import (
     Entry,
     constraint_value,
     efficiency,
+    optimal_design,
     stability_value,
     worst_violation,
 )
 from solver.results.design import ConstraintValue, OptimalDesign, OptimizerInfo, RigidOptimum
 from solver.results.equilibrium import Equilibrium
 from solver.statics.solve import solve
-from solver.statics.trefftz import trefftz_drag
 
 __all__ = ["optimize"]
 
@@ -175,35 +175,18 @@ def optimize(
                 f"allowed {value.upper:.4g}",
             )
     jig, wall = space.split(v)
-    lift = equilibrium.totals.lift
-    near, far = equilibrium.totals.induced_drag, trefftz_drag(equilibrium)
-    objective = {
-        "induced_drag": near,
-        "trefftz_drag": far,
-        "spar_mass": equilibrium.totals.spar_mass or 0.0,
-    }[problem.objective] + float(point.values["penalty"][0])
-    return OptimalDesign(
-        wing=optimal_wing,
-        jig_twist=jig,
-        control_points=None if problem.control_points is None else v[: space.n_twist].copy(),
-        wall_thickness=None if wall is None else wall.copy(),
-        objective=problem.objective,
-        objective_value=objective,
-        induced_drag=near,
-        trefftz_drag=far,
-        span_efficiency=_efficiency(lift, problem, wing, near),
-        trefftz_span_efficiency=_efficiency(lift, problem, wing, far),
-        spar_mass=equilibrium.totals.spar_mass,
-        constraints=values,
-        equilibrium=equilibrium,
-        rigid=rigid,
-        optimizer=info,
+    return optimal_design(
+        problem,
+        optimal_wing,
+        None if problem.control_points is None else v[: space.n_twist].copy(),
+        jig,
+        None if wall is None else wall.copy(),
+        equilibrium,
+        float(point.values["penalty"][0]),
+        values,
+        rigid,
+        info,
     )
-
-
-def _efficiency(lift: float, problem: DesignProblem, wing: Wing, drag: float) -> float:
-    """e = L^2 / (q pi b^2 D)."""
-    return efficiency(lift, problem.dynamic_pressure, wing.semispan, drag)
 
 
 def _rigid_optimum(
@@ -223,8 +206,8 @@ def _rigid_optimum(
         jig_twist=space.split(v)[0],
         induced_drag=near,
         trefftz_drag=far,
-        span_efficiency=_efficiency(lift, problem, wing, near),
-        trefftz_span_efficiency=_efficiency(lift, problem, wing, far),
+        span_efficiency=efficiency(lift, problem.dynamic_pressure, wing.semispan, near),
+        trefftz_span_efficiency=efficiency(lift, problem.dynamic_pressure, wing.semispan, far),
         optimizer=info,
     )
     return optimum, v[: space.n_twist]

@@ -1,6 +1,7 @@
 """How a design's constraints are reported at the optimum (each with its value at the station
 closest to its limit, and whether it shapes the optimum), how far a design breaks them, and the
-span efficiency of a drag: shared by the single-point and the multipoint problem."""
+span efficiency of a drag, and the optimal design's answer: shared by the single-point and the
+multipoint problem."""
 
 from __future__ import annotations
 
@@ -9,14 +10,24 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from solver.results.design import ConstraintValue
+from solver.inputs.design import DesignProblem
+from solver.inputs.wing import Wing
+from solver.results.design import (
+    ConstraintValue,
+    DesignCaseResult,
+    OptimalDesign,
+    OptimizerInfo,
+    RigidOptimum,
+)
 from solver.results.equilibrium import Equilibrium
+from solver.statics.trefftz import trefftz_drag
 
 __all__ = [
     "ACTIVE",
     "Entry",
     "constraint_value",
     "efficiency",
+    "optimal_design",
     "stability_value",
     "worst_violation",
 ]
@@ -113,3 +124,47 @@ def efficiency(lift: float, dynamic_pressure: float, semispan: float, drag: floa
     """e = L^2 / (q pi b^2 D)."""
     span = 2 * semispan
     return lift**2 / (dynamic_pressure * math.pi * span**2 * drag)
+
+
+def optimal_design(
+    problem: DesignProblem,
+    optimal_wing: Wing,
+    control_points: np.ndarray | None,
+    jig_twist: np.ndarray,
+    wall_thickness: np.ndarray | None,
+    equilibrium: Equilibrium,
+    penalty: float,
+    constraints: list[ConstraintValue],
+    rigid: RigidOptimum | None,
+    optimizer: OptimizerInfo,
+    cases: list[DesignCaseResult] | None = None,
+) -> OptimalDesign:
+    """The answer at the optimum: the objective's value (its penalty [the objective's unit]
+    included), both drags [N] and their span efficiencies, of the design flight's
+    `equilibrium`."""
+    lift = equilibrium.totals.lift
+    near, far = equilibrium.totals.induced_drag, trefftz_drag(equilibrium)
+    objective = {
+        "induced_drag": near,
+        "trefftz_drag": far,
+        "spar_mass": equilibrium.totals.spar_mass or 0.0,
+    }[problem.objective] + penalty
+    q, semispan = problem.dynamic_pressure, optimal_wing.semispan
+    return OptimalDesign(
+        wing=optimal_wing,
+        jig_twist=jig_twist,
+        control_points=control_points,
+        wall_thickness=wall_thickness,
+        objective=problem.objective,
+        objective_value=objective,
+        induced_drag=near,
+        trefftz_drag=far,
+        span_efficiency=efficiency(lift, q, semispan, near),
+        trefftz_span_efficiency=efficiency(lift, q, semispan, far),
+        spar_mass=equilibrium.totals.spar_mass,
+        constraints=constraints,
+        equilibrium=equilibrium,
+        rigid=rigid,
+        optimizer=optimizer,
+        cases=cases,
+    )
