@@ -33,15 +33,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from solver.errors import InfeasibleDesign, InvalidInput, SolverError, numerical_failures_as
+from solver.errors import (
+    InfeasibleDesign,
+    InvalidInput,
+    OptimizerNotConverged,
+    SolverError,
+    numerical_failures_as,
+)
 from solver.inputs.design import DesignProblem
 from solver.inputs.flight import FlightCondition
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.optimization.design_space import DesignPoint, DesignSpace
 from solver.optimization.multipoint import optimize_cases
-from solver.optimization.nlp import run_ipopt, succeeded
+from solver.optimization.nlp import run_ipopt, stopped_by_a_limit, succeeded
 from solver.optimization.report import (
+    ACTIVE,
     Entry,
     constraint_value,
     efficiency,
@@ -119,15 +126,22 @@ def _run_ipopt(
     # takes 46 iterations on 30 stations where IPOPT's 6 takes 66. With the spar's walls
     # the long history overshoots into designs without equilibrium: IPOPT's 6 there.
     history = 6 if space.n_wall else min(20, space.n_design)
+    limits = constraints.bounds()
     v, info = run_ipopt(
-        constraints,
-        start,
-        bounds,
-        constraints.bounds(),
-        tolerance,
-        history,
-        lambda: space.evaluations,
+        constraints, start, bounds, limits, tolerance, history, lambda: space.evaluations
     )
+    if stopped_by_a_limit(info):
+        # As in the multipoint problem: L-BFGS can creep along a curved boundary of the
+        # stresses, its steps shrinking; SR1 goes on from where it stopped.
+        v, more = run_ipopt(
+            constraints, v, bounds, limits, tolerance, history, lambda: space.evaluations, "sr1"
+        )
+        info = OptimizerInfo(
+            iterations=info.iterations + more.iterations,
+            evaluations=more.evaluations,
+            status=more.status,
+            seconds=info.seconds + more.seconds,
+        )
     return v, info, constraints
 
 
@@ -215,8 +229,10 @@ def _rigid_optimum(
 
 def _infeasible(
     space: DesignSpace, constraints: _Constraints, v: np.ndarray, info: OptimizerInfo
-) -> InfeasibleDesign:
-    """Name the constraint the optimiser could not meet (the most violated at its last point).
+) -> SolverError:
+    """Name the constraint the optimiser could not meet (the most violated at its last point),
+    or, stopped by its iteration limit or at a design that meets every constraint, say it did
+    not converge: a design not judged is no proof that none is feasible.
 
     v: (n_design,) the last design in physical units (twist [deg], walls [m])."""
     point = constraints.point(v / constraints.variable_scale)
@@ -227,6 +243,16 @@ def _infeasible(
     index, excess = worst_violation(
         (entry, point.values[entry[0]]) for entry in constraints.entries
     )
+    # At a design that meets every constraint (within what the answer calls a constraint at
+    # its limit), a stop is the optimizer's, not the design's: as in the multipoint problem.
+    feasible = index < 0 or excess <= ACTIVE
+    if stopped_by_a_limit(info) or (feasible and "Infeasible" not in info.status):
+        return OptimizerNotConverged(
+            space.problem.velocity,
+            info.iterations,
+            excess,
+            f"IPOPT stopped with {info.status} before its optimality test held",
+        )
     worst = "optimizer" if index < 0 else constraints.entries[index][0]
     return InfeasibleDesign(
         worst,
