@@ -38,7 +38,7 @@ export function drawHistories(gust, i) {
       line("tip twist [deg × 10]", points(c.time, c.tip_twist.map((v) => 10 * v)), COLORS.torque, { borderDash: [6, 4] }),
     ],
     xTitle: "time t [s]",
-    yTitle: "tip deflection [mm], twist [0.1 deg]",
+    yTitle: "tip: mm, 0.1 deg",
     plugins: { annotations: { hlines: [{ y: 0 }] } },
   });
   const series = {};
@@ -107,7 +107,7 @@ export function drawTuning(gust) {
       line("tuned gust", [{ x: tm.gradient, y: tm.max_bending_moment[0] }], "#222", mark),
     ],
     xTitle: "gust gradient H [m]",
-    yTitle: "incremental root bending moment [N·m]",
+    yTitle: "root ΔM [N·m]",
     pointLegend: true,
   });
   record(

@@ -35,7 +35,7 @@ function descriptor(name, property) {
   const kinds = members(property);
   const type = kinds[0]?.type ?? "number";
   const { unit, text } = described(property);
-  const base = { key: `gust_${name}`, name, label: property.title ?? name, unit: unit && unit !== "-" ? unit : undefined, value: null, hint: text.split(":")[0], property };
+  const base = { key: `gust_${name}`, name, label: property.title ?? name, unit: unit && unit !== "-" ? unit : undefined, value: null, hint: text.replace(/: from -?[\d.e+-]+ to .*$/s, ""), property };
   const api = property.default;
   const defaultWord = api === undefined || api === null ? "none" : String(api);
   if (type === "boolean") return { ...base, kind: "select", options: [["", `API default (${defaultWord})`], ["true", "yes"], ["false", "no"]], bool: true };
