@@ -24,6 +24,7 @@ import "./panels/roll.js";
 import "./panels/optimize.js";
 import "./panels/batch.js";
 import "./panels/loads.js";
+import "./panels/gust.js";
 import "./panels/generic.js"; // after every panel: the operations left to it
 import "./panels/shape.js";
 import "./panels/downloads.js";

@@ -1151,6 +1151,98 @@ def test_sizing_loads_of_an_envelope_draw_its_v_n_diagrams_and_loads_envelope(
     assert tab.errors == []
 
 
+def test_gust_loads_draw_the_tuned_gust_its_histories_and_the_envelopes(
+    visit: Callable[..., Visit], server: Server
+) -> None:
+    """The gust panel: the /gust study example (the study wing with its mass at 12 m/s, 300 N)
+    is sent as pasted (no `gust`: the API's defaults); the time figure draws the tuned gust's
+    load factor and tip deflection, and another gradient when chosen; the envelope figure the 1 g
+    loads, the 1-cos gusts' totals and turbulence's design loads along the span; the tuned-gust
+    figure each gradient's peak load factor and root bending moment, the tuned one and Pratt's
+    load factor marked; the numbers table and the CSVs the answer's numbers."""
+    body = _example(server, "/gust", "study")
+    tab = visit("/")
+    tab.ready()
+    page = tab.page
+    assert page.evaluate("window.__flexwing.operations")["gust"] == {
+        "figures": ["gust-time", "gust-envelope", "gust-tuned"]
+    }
+    assert page.get_attribute("#f-gust_max_gradient", "max") == "10000"
+    tab.load_json(json.dumps(body))
+    page.wait_for_function("() => !window.__flexwing.state.busy")
+    page.click("#gust-details summary")
+    sent = _ran(tab, "gust", "#gust-button")["request"]
+    assert "gust" not in sent and sent["flight"] == body["flight"]
+    with server.client() as client:
+        expected = client.post("/gust", json=sent).json()
+    tuned = expected["tuned_load_factor"]
+    gusts = expected["gusts"]
+
+    timed = tab.figure("gust-time")
+    assert timed["state"] == "drawn" and timed["marks"]["case"] == tuned and timed["marks"]["tuned"]
+    for key in ("load_factor", "tip_heave", "tip_twist", "root_bending_moment"):
+        assert timed["series"][key]["x"] == pytest.approx(gusts[tuned]["time"])
+        assert timed["series"][key]["y"] == pytest.approx(gusts[tuned][key])
+    other = (tuned + 3) % len(gusts)
+    page.select_option("#gust-case", str(other))
+    timed = tab.figure("gust-time")
+    assert timed["marks"]["gradient"] == pytest.approx(gusts[other]["gradient"])
+    assert timed["series"]["load_factor"]["y"] == pytest.approx(gusts[other]["load_factor"])
+
+    drawn = tab.figure("gust-envelope")
+    assert drawn["state"] == "drawn" and expected["turbulence"] is not None
+    for key in ("shear", "bending_moment", "torque"):
+        assert drawn["series"][f"one_g_{key}"]["y"] == pytest.approx(expected[f"one_g_{key}"])
+        for side in ("max", "min"):
+            discrete = drawn["series"][f"discrete_{side}_{key}"]
+            assert discrete["x"] == pytest.approx(expected["y"])
+            assert discrete["y"] == pytest.approx(expected["envelope"][f"{side}_{key}"])
+            turbulence = drawn["series"][f"turbulence_{side}_{key}"]["y"]
+            assert turbulence == pytest.approx(expected["turbulence"][f"{side}_{key}"])
+    # The total envelope holds the 1 g loads (the model is linear: up and down are symmetric).
+    root = drawn["marks"]
+    assert root["root_discrete_max_bending_moment"] >= expected["one_g_bending_moment"][0]
+    assert root["root_discrete_min_bending_moment"] <= expected["one_g_bending_moment"][0]
+
+    search = tab.figure("gust-tuned")
+    assert search["series"]["load_factor"]["x"] == pytest.approx([g["gradient"] for g in gusts])
+    assert search["series"]["load_factor"]["y"] == pytest.approx(
+        [g["max_load_factor"] for g in gusts]
+    )
+    assert search["marks"]["tuned_load_factor"] == max(g["max_load_factor"] for g in gusts)
+    assert search["marks"]["tuned_gradient"] == gusts[tuned]["gradient"]
+    assert search["marks"]["pratt_load_factor"] == pytest.approx(expected["pratt_load_factor"])
+    # The numbers table: each value as the answer's, shown to 5 significant digits.
+    cells = page.eval_on_selector_all(
+        "#gust-tuned-table tbody tr",
+        "rows => rows.map(r => [r.cells[0].textContent, Number(r.cells[1].textContent)])",
+    )
+    shown = dict(cells)
+    for label, value in [
+        ("mass ratio mu_g", expected["mass_ratio"]),
+        ("Pratt's K_g", expected["pratt_alleviation"]),
+        ("Pratt's load factor", expected["pratt_load_factor"]),
+        ("tuned gradient H (load factor)", gusts[tuned]["gradient"]),
+        ("max load factor n", gusts[tuned]["max_load_factor"]),
+    ]:
+        assert shown[label] == pytest.approx(value, rel=1e-4), label
+    assert f"n = {gusts[tuned]['max_load_factor']:.3f}" in page.inner_text("#gust-time-verdict")
+    with page.expect_download() as info:
+        page.click("#download-gust-envelope")
+    rows = list(csv.DictReader(Path(info.value.path()).read_text().splitlines()))
+    assert [float(r["y [m]"]) for r in rows] == pytest.approx(expected["y"])
+    assert float(rows[0]["gust_max_bending_moment [N m]"]) == pytest.approx(
+        expected["envelope"]["max_bending_moment"][0]
+    )
+    with page.expect_download() as info:
+        page.click("#download-gusts")
+    rows = list(csv.DictReader(Path(info.value.path()).read_text().splitlines()))
+    assert [float(r["max_load_factor"]) for r in rows] == pytest.approx(
+        [g["max_load_factor"] for g in gusts]
+    )
+    assert tab.errors == []
+
+
 def test_load_cases_typed_in_the_table_are_sent_as_typed(
     visit: Callable[..., Visit], server: Server
 ) -> None:

@@ -1,4 +1,4 @@
-// Every operation of the running API that no panel of this page runs (a new one, POST /gust,
+// Every operation of the running API that no panel of this page runs (a new one,
 // the day it arrives): one panel each, made from the OpenAPI document as the page opens. Its
 // request is the editor's wing, flight, options and airspeeds (those its body takes) with a
 // loaded body's other keys as given (Request JSON); its answer is shown as it comes: a table of its numbers
