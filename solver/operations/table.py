@@ -178,7 +178,7 @@ optimum: 422 `/problems/infeasible-design` naming the constraint (and the case).
 can run as jobs (`POST /jobs` with operation `optimize`).""",
         refusals="no feasible optimum (/problems/infeasible-design, `constraint` names which, "
         "`case` in which load case), no equilibrium or no convergence of the optimal wing, or "
-        "a multipoint design stopped by the optimizer's iteration limit "
+        "a design stopped by the optimizer's iteration limit "
         "(/problems/no-equilibrium, /problems/not-converged); more load cases than "
         "FLEXWING_MAX_LOAD_CASES is invalid input naming `load_cases`.",
         budget="optimize",
