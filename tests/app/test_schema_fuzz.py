@@ -54,9 +54,9 @@ from tests.conftest import fuzz_examples
 from tests.strategies import alphas, densities, ratios, speed_for, wings
 
 # Per operation, seed and mode (two seeds, two modes: four times this per operation that takes
-# input): 160 requests for each operation the document lists that takes input, in the ~1 minute
+# input): 120 requests for each operation the document lists that takes input, in the ~1 minute
 # of one CI process this file can take (HYPOTHESIS_PROFILE=nightly: 20 times as many).
-CASES_PER_OPERATION = 40
+CASES_PER_OPERATION = 30
 STATEFUL_SEQUENCES = 25
 SEEDS = (0, 20261201)
 # [s] past the synchronous wait (FLEXWING_SYNC_WAIT, 10 s), so that every case ends in the
