@@ -52,13 +52,6 @@ _OVER_AIRSPEEDS = solver.FlightCondition.AIRSPEEDS
 # Component names the published document has always used, where they differ from the
 # solver's class names: (class, way or None, without) -> name.
 _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
-    (solver.SolveInput, None, ()): "SolveRequest",
-    (solver.SweepInput, None, ()): "SweepRequest",
-    (solver.OptimizeInput, None, ()): "OptimizeRequest",
-    (solver.FlutterInput, None, ()): "FlutterRequest",
-    (solver.RollInput, None, ()): "RollRequest",
-    (solver.ControlsInput, None, ()): "ControlsRequest",
-    (solver.LoadsInput, None, ()): "LoadsRequest",
     (solver.SparDesign, None, ()): "TubeSpar",
     (solver.Material, None, ()): "SparMaterial",
     (solver.FlightCondition, "alpha", ()): "FlightAtAlpha",
@@ -70,6 +63,9 @@ _NAMES: dict[tuple[type, str | None, tuple[str, ...]], str] = {
     (solver.DesignCondition, "lift", ()): "OptimizeFlightAtLift",
     (solver.DesignCondition, "weight", ()): "OptimizeFlightAtWeight",
 }
+# An operation's request model is named after it: POST /{name} takes {Name}Request.
+_NAMES.update({(op.input, None, ()): f"{op.name.title()}Request" for op in solver.OPERATION_TABLE})
+
 # The docstring a way's model says of itself.
 _WAY_DOCS: dict[tuple[type, str], str] = {
     (solver.FlightCondition, "alpha"): "Steady, symmetric flight at a given angle of attack.",

@@ -47,19 +47,17 @@ __all__ = [
 
 # Response model names that differ from the solver's class names (stable OpenAPI components).
 MODEL_NAMES = {
-    "Equilibrium": "SolveResponse",
-    "AirspeedSweep": "SweepResponse",
     "AirspeedPoint": "SweepPoint",
     "AirspeedSweepInfo": "SweepInfo",
     "SolveInfo": "SolverInfo",
     "DivergenceSummary": "Divergence",
     "PointFailure": "NoEquilibrium",
-    "OptimalDesign": "OptimizeResponse",
-    "FlutterResult": "FlutterResponse",
-    "ControlSweep": "ControlsResponse",
-    "LoadsEnvelope": "LoadsResponse",
     "ControlSweepPoint": "ControlsPoint",
 }
+# An operation's result model is named after it: POST /{name} answers {Name}Response.
+MODEL_NAMES.update(
+    {op.result.__name__: f"{op.name.title()}Response" for op in solver.OPERATION_TABLE}
+)
 
 # Fields the service adds to a solver type: name -> (type, default, description).
 API_ONLY_FIELDS: dict[str, dict[str, tuple[Any, Any, str]]] = {
