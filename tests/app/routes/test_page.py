@@ -218,6 +218,11 @@ def test_page_loads_clean_and_draws_every_figure(visit: Callable[..., Visit]) ->
     sweep = tab.figure("14.4")
     assert len(sweep["series"]["amplification"]["x"]) >= 5
     assert len(sweep["series"]["amplification_fit"]["x"]) == 300
+    # The fit drawn in the sweep's own q (its density from the fit's divergence point, right at
+    # any altitude): at 92 % of its divergence speed, 1 / (intercept (1 - 0.92^2)).
+    ending = sweep["series"]["amplification_fit"]["y"][-1]
+    intercept = sweep["marks"]["fit_intercept"]
+    assert ending == pytest.approx(1 / (intercept * (1 - 0.92**2)), rel=1e-9)
     assert sweep["marks"]["fold_velocity"] == pytest.approx(21.44, abs=0.01)
 
     shape = tab.figure("14.5")

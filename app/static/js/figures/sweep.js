@@ -20,7 +20,7 @@ export function amplification(equilibrium, kind) {
 }
 
 /** Tip twist and lift amplification against airspeed, the fitted 1/A law, and the speeds. */
-export function drawSweep(sweep, density) {
+export function drawSweep(sweep) {
   const { fit, linear, fold } = sweep.divergence;
   const solved = sweep.points.filter((p) => p.status === "equilibrium");
   const failed = sweep.points.filter((p) => p.status !== "equilibrium");
@@ -54,9 +54,11 @@ export function drawSweep(sweep, density) {
   const regions = fold.velocity != null ? [{ from: fold.velocity, to: 1e9, color: "rgba(216, 67, 21, 0.07)" }] : [];
   const xmax = 5 * Math.ceil((1.03 * Math.max(...sweep.points.map((p) => p.velocity), ...vlines.map((l) => l.x))) / 5);
   const ampSets = [];
-  if (fit.slope != null && fit.intercept != null && fit.velocity != null) {
+  if (fit.slope != null && fit.intercept != null && fit.velocity != null && fit.dynamic_pressure != null) {
     // The study draws the fit from 0 to 92 % of its divergence speed.
     const fitV = Array.from({ length: 300 }, (_, i) => (0.92 * fit.velocity * i) / 299);
+    // The fit is in q; its divergence point gives the sweep's density (an altitude's too).
+    const density = (2 * fit.dynamic_pressure) / (fit.velocity * fit.velocity);
     const fitA = fitV.map((v) => 1 / (fit.intercept + fit.slope * 0.5 * density * v * v));
     series.amplification_fit = { label: "A = 1/(1 - q/q_div)", x: fitV, y: fitA };
     ampSets.push(line("fit: A = 1/(intercept + slope q)", points(fitV, fitA), COLORS.fit, { borderDash: [6, 4], borderWidth: 1.5, pointStyle: "line" }));

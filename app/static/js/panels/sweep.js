@@ -130,7 +130,7 @@ const sweep = definePanel({
   request: () => ({ ...editorRequest("sweep", { withVelocity: false }), velocities: airspeeds.read() }),
   words: () => ({ busy: "Sweeping", failed: "Sweep failed.", cancelled: "Sweep cancelled." }),
   render({ request, response }) {
-    drawSweep(response, request.flight.density ?? 1.225); // the API's default
+    drawSweep(response);
     $("sweep-note").textContent = notesOf(response.divergence);
     renderTable(request, response);
     renderOnsets(response);
