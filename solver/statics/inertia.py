@@ -26,25 +26,47 @@ carried by the whole last segment); a mass at the root station sits on the clamp
 the root's reaction.
 
 The beam's rows of these loads (the residual's bending and torsion rows,
-`solver.model.beam`) are constant: they enter the residual beside the aerodynamic ones
-(`solver.statics.system.CoupledSystem.load_per_q`).
+`solver.model.beam`) enter the residual beside the aerodynamic ones
+(`solver.statics.system.CoupledSystem.load_per_q`). On the linear beam they are constant (the
+jig's arms, `InertialLoads.rows`). On the geometrically exact beam (`solver.model.exact_beam`)
+the weight is a dead load taken about the deformed stations, as the beam's exact statics take
+every force (`deformed_loads`): each mass point sits on the deformed reference line, at the
+middle of its segment's chord for a strip, at its station for a concentrated mass, and
+
+    M_i = sum_p W_p (S_p - S_i),   T_i = cos(beta_i) T_jig,i
+
+with S the stations' foreshortened distances along the jig axis
+(`solver.model.geometry.reference_line`), W_p the one-g weights normal to the jig's plane,
+and T_jig the static moments' torque about the jig axis: the weight (normal to the plane)
+has no moment about the deformed axis t_i but through the mass's offset across it, along
+e_c, which bending about e_c leaves fixed ((d e_c x W n) . t_i = -d W cos(beta_i)). These rows
+depend on the rotations; `deformed_rows` gives them with their exact derivative.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
+import casadi as ca
 import numpy as np
 
 from solver.inputs.mass import MassModel
 from solver.inputs.wing import Wing
 from solver.model.beam import coupled_trapezoid
-from solver.model.geometry import arc_length, in_wing_plane
+from solver.model.geometry import arc_length, in_wing_plane, reference_line
 from solver.model.layout import Layout
 from solver.numerics.cache import cached
 
-__all__ = ["GRAVITY", "InertialLoads", "inertial_loads"]
+__all__ = [
+    "GRAVITY",
+    "DeformedInertialLoads",
+    "InertialLoads",
+    "deformed_loads",
+    "deformed_rows",
+    "inertial_loads",
+]
 
 GRAVITY = 9.80665  # [m/s^2] standard gravity (3rd CGPM, 1901; ISO 80000-3)
 
@@ -57,7 +79,10 @@ class InertialLoads:
     shear, bending_moment, torque: (N,) [N], [N m], [N m] at each station, as the reported
     loads are (z up, torque nose-up about the EA); rows: (n_unknowns,) their terms in the
     residual's bending and torsion rows (its units, `solver.model.beam`; zero elsewhere);
-    mass: [kg] of both halves, concentrated masses included.
+    mass: [kg] of both halves, concentrated masses included; station_weights: (N, N) [N] the
+    bending moment's weights on the stations' positions along the axis, bending_moment =
+    station_weights @ S for stations S [m] along it (the jig's arc length, or the exact beam's
+    foreshortened reference line: `deformed_loads`).
     """
 
     shear: np.ndarray
@@ -65,6 +90,19 @@ class InertialLoads:
     torque: np.ndarray
     rows: np.ndarray
     mass: float
+    station_weights: np.ndarray
+
+
+@dataclass(frozen=True)
+class DeformedInertialLoads:
+    """The one-g inertial loads about the exact beam's deformed stations (module docstring) at
+    rotations beta (N,) [rad]: bending_moment, torque (N,) [N m]; their derivatives in beta,
+    bending_beta, torque_beta (N, N) [N m/rad]."""
+
+    bending_moment: np.ndarray
+    torque: np.ndarray
+    bending_beta: np.ndarray
+    torque_beta: np.ndarray
 
 
 def inertial_loads(wing: Wing, layout: Layout) -> InertialLoads | None:
@@ -77,7 +115,7 @@ def inertial_loads(wing: Wing, layout: Layout) -> InertialLoads | None:
 
 
 def _size(loads: InertialLoads | None) -> int:
-    return 0 if loads is None else 4 * loads.rows.nbytes
+    return 0 if loads is None else 4 * loads.rows.nbytes + loads.station_weights.nbytes
 
 
 def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoads:
@@ -110,11 +148,72 @@ def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoad
         bending[inboard] += weight * item.mass * (arc[k] - arc[inboard])
         torque[inboard] += -weight * item.mass * item.offset
         total += 2 * item.mass
+    station_weights = _station_weights(weight * strip_mass, mass, weight, n)
     rows = np.zeros(layout.n_unknowns)
     stiffness = (wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling)
     rows[layout.bending_rows], rows[layout.torsion_rows] = coupled_trapezoid(
         h, bending, torque, stiffness
     )
-    for array in (shear, bending, torque, rows):
+    for array in (shear, bending, torque, rows, station_weights):
         array.setflags(write=False)
-    return InertialLoads(shear, bending, torque, rows, total)
+    return InertialLoads(shear, bending, torque, rows, total, station_weights)
+
+
+def _station_weights(strip_force: np.ndarray, mass: MassModel, weight: float, n: int) -> np.ndarray:
+    """(N, N) [N]: M_i = sum_j W_ij S_j, each strip's weight at its chord's middle (half on
+    either station), each concentrated mass at its station, less the outboard weight at S_i."""
+    weights = np.zeros((n, n))
+    for i in range(n):
+        weights[i, i:-1] += strip_force[i:] / 2
+        weights[i, i + 1 :] += strip_force[i:] / 2
+        weights[i, i] -= strip_force[i:].sum()
+    for item in mass.concentrated:
+        k = item.station
+        force = weight * item.mass
+        weights[: k + 1, k] += force
+        weights[np.arange(k + 1), np.arange(k + 1)] -= force
+    return weights
+
+
+@functools.cache
+def _stations_function(n: int) -> ca.Function:
+    """(beta (N,), h (N-1,)) -> S (N,) and dS/dbeta (N, N): the exact beam's stations along the
+    jig axis (`solver.model.geometry.reference_line`, its own formula), differentiated by
+    CasADi."""
+    beta, h = ca.SX.sym("beta", n), ca.SX.sym("h", n - 1)
+    along, _ = reference_line(beta, h)
+    return ca.Function("dead_load_stations", [beta, h], [along, ca.jacobian(along, beta)])
+
+
+def deformed_loads(inertia: InertialLoads, wing: Wing, beta: np.ndarray) -> DeformedInertialLoads:
+    """The one-g inertial loads about the exact beam's deformed stations at rotations beta (N,)
+    [rad] (module docstring), with their derivatives in beta."""
+    h = np.diff(arc_length(wing))
+    along, along_beta = _stations_function(wing.n_stations)(beta, h)
+    cos = np.cos(beta)
+    return DeformedInertialLoads(
+        bending_moment=inertia.station_weights @ np.asarray(along).ravel(),
+        torque=cos * inertia.torque,
+        bending_beta=inertia.station_weights @ np.asarray(along_beta),
+        torque_beta=np.diag(-np.sin(beta) * inertia.torque),
+    )
+
+
+def deformed_rows(
+    inertia: InertialLoads, wing: Wing, layout: Layout, beta: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The exact beam's one-g inertial rows at rotations beta (N,) [rad]: (n_unknowns,) as
+    `InertialLoads.rows`, and their derivative in beta (n_unknowns, N) (zero but in the
+    bending and torsion rows)."""
+    loads = deformed_loads(inertia, wing, beta)
+    h = np.diff(arc_length(wing))
+    stiffness = (wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling)
+    rows = np.zeros(layout.n_unknowns)
+    rows_beta = np.zeros((layout.n_unknowns, wing.n_stations))
+    rows[layout.bending_rows], rows[layout.torsion_rows] = coupled_trapezoid(
+        h, loads.bending_moment, loads.torque, stiffness
+    )
+    rows_beta[layout.bending_rows], rows_beta[layout.torsion_rows] = coupled_trapezoid(
+        h, loads.bending_beta, loads.torque_beta, stiffness
+    )
+    return rows, rows_beta

@@ -26,7 +26,7 @@ from solver.model.geometry import (
     streamwise_twist,
 )
 from solver.results.equilibrium import Panels, Stations, Totals
-from solver.statics.inertia import InertialLoads
+from solver.statics.inertia import InertialLoads, deformed_loads
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import far_field_drag
 
@@ -221,6 +221,11 @@ def equilibrium_loads(
     if inertia is not None:
         load_factor = system.load_per_q * q
         normal = load_factor * math.cos(math.radians(system.alpha))  # `CoupledSystem._loaded`
+        if layout.exact:  # the weight about the deformed stations (`solver.statics.inertia`)
+            deformed = deformed_loads(inertia, wing, x[layout.slope])
+            inertia = dataclasses.replace(
+                inertia, bending_moment=deformed.bending_moment, torque=deformed.torque
+            )
         stations, totals = _with_inertia(stations, totals, inertia, load_factor, normal)
     if wing.spar is not None:
         stations, totals = _with_spar(wing, wing.spar, stations, totals, safety_factor)

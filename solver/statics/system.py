@@ -26,7 +26,7 @@ from solver.numerics.branch_points import branch_scales
 from solver.numerics.cache import cached, model_for
 from solver.numerics.compiled import CompiledModel
 from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
-from solver.statics.inertia import InertialLoads, inertial_loads
+from solver.statics.inertia import InertialLoads, deformed_rows, inertial_loads
 
 __all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
 
@@ -126,14 +126,36 @@ class CoupledSystem:
             return None
         return inertial_loads(self.wing, self.layout)
 
-    def _loaded(self, r1: np.ndarray) -> np.ndarray:
-        """r1 with the wing's inertial load per unit q (the rows it adds, constant in x): the
-        apparent weight acts against the lift, normal to the flight path, so the wing's plane
-        carries cos(alpha) of it (`solver.statics.inertia`)."""
-        inertia = self.inertia
-        if inertia is None:
+    def _loaded(self, r1: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """r1 with the wing's inertial load per unit q at x: the apparent weight acts against
+        the lift, normal to the flight path, so the wing's plane carries cos(alpha) of it
+        (`solver.statics.inertia`); constant rows on the linear beam, about the deformed
+        stations on the exact one."""
+        if self.inertia is None:
             return r1
-        return r1 + self.load_per_q * math.cos(math.radians(self.alpha)) * inertia.rows
+        return r1 + self.load_per_q * math.cos(math.radians(self.alpha)) * self._inertia_rows(x)[0]
+
+    def _inertia_rows(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """The one-g inertial rows at x (n_unknowns,) and their derivative in x (n_unknowns,
+        n_unknowns), None where they are constant (the linear beam)."""
+        inertia = self.inertia
+        assert inertia is not None
+        if not self.layout.exact:
+            return inertia.rows, None
+        slope = self.layout.slope
+        rows, rows_beta = deformed_rows(inertia, self.wing, self.layout, x[slope])
+        rows_x = np.zeros((rows.size, x.size))
+        rows_x[:, slope] = rows_beta
+        return rows, rows_x
+
+    def _loaded_evaluation(self, evaluation: Evaluation, x: np.ndarray) -> Evaluation:
+        """The evaluation with the inertial load per unit q in r1 and its derivative in J1."""
+        rows, rows_x = self._inertia_rows(x)
+        share = self.load_per_q * math.cos(math.radians(self.alpha))
+        r1 = evaluation.r1 + share * rows
+        if rows_x is None:
+            return dataclasses.replace(evaluation, r1=r1)
+        return dataclasses.replace(evaluation, r1=r1, jacobian1=evaluation.jacobian1 + share * rows_x)
 
     def with_flow(self, flow: Flow) -> CoupledSystem:
         """The same wing and alpha with another `flow`."""
@@ -258,30 +280,29 @@ class CoupledSystem:
 
     def evaluate(self, x: np.ndarray) -> Evaluation:
         evaluation = self.model.evaluate(x, self.parameters)
-        if self.load_per_q == 0.0:
+        if self.inertia is None:
             return evaluation
-        return dataclasses.replace(evaluation, r1=self._loaded(evaluation.r1))
+        return self._loaded_evaluation(evaluation, x)
 
     def evaluate_with_alpha(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms]:
         evaluation, terms = self.model.evaluate_with_alpha(x, self.parameters)
-        inertia = self.inertia
-        if inertia is None:
+        if self.inertia is None:
             return evaluation, terms
         # d(cos(alpha))/d(alpha) per degree: the trimmed system's exact alpha column.
         turning = -self.load_per_q * math.sin(math.radians(self.alpha)) * math.radians(1.0)
         return (
-            dataclasses.replace(evaluation, r1=self._loaded(evaluation.r1)),
-            dataclasses.replace(terms, r1=terms.r1 + turning * inertia.rows),
+            self._loaded_evaluation(evaluation, x),
+            dataclasses.replace(terms, r1=terms.r1 + turning * self._inertia_rows(x)[0]),
         )
 
     def residual(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         r0, r1 = self.model.residual(x, self.parameters)
-        return r0, self._loaded(r1)
+        return r0, self._loaded(r1, x)
 
     def residual_with_lift(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(r0, r1) and the lift of both halves per unit q [m^2] at x."""
         r0, r1, lift = self.model.residual_with_lift(x, self.parameters)
-        return r0, self._loaded(r1), lift
+        return r0, self._loaded(r1, x), lift
 
     def evaluate_with_controls(self, x: np.ndarray) -> tuple[Evaluation, AlphaTerms, ControlTerms]:
         """The flow model's evaluation at x, with what control surfaces and roll add."""
