@@ -57,6 +57,24 @@ def _with_surfaces(deflection: float = 4.0) -> solver.Wing:
     )
 
 
+def _massive() -> solver.Wing:
+    """N = 7, forward swept and dihedral, bending-torsion coupled, a mass whose centre of
+    gravity lies aft of the elastic axis, and a store ahead of it at station 4."""
+    n = 7
+    store = solver.ConcentratedMass.create(4, 30.0, 2.0, -0.15)
+    return solver.Wing.create(
+        np.linspace(0, 3, n),
+        0.8,
+        0.45,
+        1e4,
+        900.0,
+        sweep=-20.0,
+        dihedral=6.0,
+        bending_torsion_coupling=800.0,
+        mass=solver.MassModel.create(n, np.linspace(12.0, 4.0, n), 0.6, 0.1, [store]),
+    )
+
+
 ROTATION = Flow.along(1, 2, image=-1.0, image_jacobian=-1.0, roll_rate=0.05)
 
 SYSTEMS = {
@@ -101,6 +119,10 @@ SYSTEMS = {
     ),
     "exact_strip_tapered_forward_ea": lambda: CoupledSystem(
         tapered_forward_ea(), 6.0, aerodynamics="strip", structure="geometrically_exact"
+    ),
+    # The wing's weight about the deformed stations (solver.statics.inertia), at 2.5 g.
+    "exact_mass_coupled_dihedral_2.5g": lambda: CoupledSystem(
+        _massive(), 5.0, 2, structure="geometrically_exact", load_per_q=2.5 / 800.0
     ),
 }
 
