@@ -176,6 +176,56 @@ def test_in_the_small_deflection_limit_the_exact_beam_is_the_linear_one(stiffnes
     assert exact.totals.lift == pytest.approx(linear.totals.lift, rel=tolerance)
 
 
+def _hanging_elastica(load_parameter: float) -> tuple[float, float, float]:
+    """A cantilever under its own uniform dead weight, q L^3 / EI = `load_parameter`: the tip's
+    droop and distance along the jig axis over L, and the root's EI beta'(0) L / EI = M_root L /
+    EI; EI beta'' = q (L - s) cos(beta), beta(0) = 0, beta'(L) = 0, by shooting (to 1e-12)."""
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq
+
+    def bend(_s: float, y: np.ndarray) -> list[float]:
+        beta, rate = y[0], y[1]
+        return [rate, -load_parameter * (1 - _s) * math.cos(beta), math.sin(beta), math.cos(beta)]
+
+    def shoot(root_rate: float) -> np.ndarray:
+        start = [0.0, root_rate, 0.0, 0.0]
+        ends = solve_ivp(bend, (0.0, 1.0), start, method="DOP853", rtol=1e-12, atol=1e-13)
+        return ends.y[:, -1]
+
+    root_rate = brentq(lambda rate: shoot(rate)[1], 0.0, load_parameter, xtol=1e-14)
+    _, _, droop, along = shoot(root_rate)
+    return abs(droop), along, root_rate
+
+
+def test_the_hale_wing_hangs_under_its_weight_as_the_elastica_of_a_uniform_dead_load():
+    """The HALE wing (tests/solver/model/test_hale_wing.py) at 1 g without lift (alpha 0, flat
+    sections, 1 m/s): q L^3 / EI = 0.75 g 16^3 / 2e4 = 1.506. The elastica: droop 2.93123 m,
+    the tip 15.68984 m along the jig axis, root moment 928.637 N m. The weight, a dead load
+    about the deformed stations (`solver.statics.inertia`), measured: droop 2.931213 m at N =
+    17 and 2.931227 at N = 33 (errors -1.9e-5 and -4.7e-6 m: second order, their ratio 4.0);
+    the reported root moment -928.626 N m at N = 17 (-1.2e-5 relative). Held to 3e-5 m and 4e-5
+    relative at N = 17, the ratio to 4 +- 0.5. (The linear beam's droop is q L^4 / (8 EI), 3.01260
+    m, at every N: the jig's arms, tests/solver/statics/test_inertia.py.)"""
+    from tests.solver.model.test_hale_wing import SEMISPAN, hale_wing
+
+    weight = 0.75 * 9.80665  # [N/m]
+    droop, along, root_rate = _hanging_elastica(weight * SEMISPAN**3 / 2e4)
+    assert droop * SEMISPAN == pytest.approx(2.931, abs=5e-4)  # the design note's figure
+    flight = solver.FlightCondition(1.0, 0.0, 0.0889, load_factor=1.0)
+    strip = solver.SolverOptions(structure="geometrically_exact", aerodynamics="strip")
+    errors = []
+    for n in (17, 33):
+        answer = solver.solve(hale_wing(n), flight, options=strip)
+        errors.append(answer.stations.axis_z[-1] + droop * SEMISPAN)
+        if n == 17:
+            assert abs(errors[0]) < 3e-5
+            assert answer.stations.axis_y[-1] == pytest.approx(along * SEMISPAN, abs=1e-3)
+            assert answer.stations.bending_moment[0] == pytest.approx(
+                -2e4 * root_rate / SEMISPAN, rel=4e-5
+            )
+    assert errors[0] / errors[1] == pytest.approx(4.0, abs=0.5)
+
+
 def test_the_answers_internal_loads_are_those_the_exact_rows_balance():
     """At an exact equilibrium of a swept, dihedral, coupled wing bent to 10 % of its semispan,
     the answer's bending moment and torque (computed anew from the panels' forces,
