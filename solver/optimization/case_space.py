@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -35,7 +36,13 @@ from solver.model.beam import DEG_PER_RAD
 from solver.model.geometry import arc_length, in_wing_plane
 from solver.numerics.evaluation import AlphaTerms
 from solver.optimization.design_space import DesignPoint, DesignSpace
-from solver.statics.inertia import GRAVITY, inertial_loads
+from solver.statics.inertia import (
+    GRAVITY,
+    deformed_rows,
+    deformed_stations,
+    inertial_loads,
+    strip_station_weights,
+)
 
 __all__ = ["CaseFlight", "CaseSpace", "spar_bending_per_mass"]
 
@@ -64,13 +71,15 @@ class CaseFlight:
         return 0.5 * self.density * self.velocity * self.velocity
 
 
-def spar_bending_per_mass(wing: Wing) -> np.ndarray:
+def spar_bending_per_mass(wing: Wing, along: np.ndarray | None = None) -> np.ndarray:
     """(N, N) [N m / (kg/m)] the inertial bending moment at one g at each station (row) per unit
     mass per length at each station (column), as `solver.statics.inertia` lumps it: each strip's
     mass, its stations' mean times its length, at its middle on the elastic axis, normal to the
-    wing's plane. Linear: the moment of a spar's own mass rho A is this times rho A."""
-    arc = arc_length(wing)
-    h = np.diff(arc)
+    wing's plane; its arms along the jig axis, or along the stations `along` (N,) [m] (the exact
+    beam's deformed stations, `solver.statics.inertia.deformed_stations`). Linear: the moment
+    of a spar's own mass rho A is this times rho A."""
+    h = np.diff(arc_length(wing))  # the strips' lengths along the (inextensible) axis
+    arc = arc_length(wing) if along is None else along
     middle = (arc[:-1] + arc[1:]) / 2
     weight = float(in_wing_plane((0.0, 0.0, -GRAVITY), wing)[2])
     n = wing.n_stations
@@ -101,6 +110,9 @@ class CaseSpace(DesignSpace):
         self.q = flight.dynamic_pressure
         self.alpha = flight.alpha
         self.mass = None if wing.mass is None else inertial_loads(wing, self.layout)
+        # The exact beam's stations along the jig axis at the last equilibrium: the weight's
+        # arms (`solver.statics.inertia`); None on the linear beam, the jig's.
+        self.along: np.ndarray | None = None
         if self.mass is not None and self.n_wall:
             assert wing.spar is not None
             self.per_mass = spar_bending_per_mass(wing)
@@ -149,6 +161,50 @@ class CaseSpace(DesignSpace):
             return self.mass.rows
         return self._beam_rows(*self._mass_loads(tube), tube)
 
+    def _mass_terms(
+        self, x: np.ndarray, tube: TubeSpar | None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """The mass's one-g rows at x with the design's walls, and their derivative in x
+        (n_unknowns, n_unknowns): constant on the linear beam (None), about the deformed
+        stations on the exact beam (`solver.statics.inertia`, as `CoupledSystem` loads it)."""
+        assert self.mass is not None
+        layout = self.layout
+        if not layout.exact:
+            return self._mass_rows(tube), None
+        beta = x[layout.slope]
+        if not self.n_wall:
+            rows, rows_beta = deformed_rows(self.mass, self.wing, layout, beta)
+        else:
+            assert tube is not None
+            along, along_beta = deformed_stations(self.wing, beta)
+            weights = self.mass.station_weights + strip_station_weights(self._spar_force(tube))
+            torque = self.mass.torque
+            rows = self._beam_rows(weights @ along, np.cos(beta) * torque, tube)
+            rows_beta = self._beam_rows(weights @ along_beta, np.diag(-np.sin(beta) * torque), tube)
+        rows_x = np.zeros((rows.size, x.size))
+        rows_x[:, layout.slope] = rows_beta
+        return rows, rows_x
+
+    def _mass_load(
+        self, tube: TubeSpar | None, share: float
+    ) -> Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | None]]:
+        """x -> the mass's rows in r1 (per unit q: `share` = n cos(alpha) / q of the one-g
+        rows) and their derivative in x, None where constant (`_mass_terms`)."""
+
+        def load(x: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+            rows, rows_x = self._mass_terms(x, tube)
+            return share * rows, None if rows_x is None else share * rows_x
+
+        return load
+
+    def _spar_force(self, tube: TubeSpar) -> np.ndarray:
+        """(N-1,) [N] the strips' one-g weight normal to the plane of the design's spar beyond
+        the wing's own (its mass per length rho (A - A_wing), lumped as
+        `solver.statics.inertia` lumps it)."""
+        extra = tube.material.density * (tube.area - self.spar_area)
+        weight = float(in_wing_plane((0.0, 0.0, -GRAVITY), self.wing)[2])
+        return weight * self.h * (extra[:-1] + extra[1:]) / 2
+
     def _share(self, alpha: float) -> float:
         """[1/Pa] n cos(alpha) / q: the mass's rows' weight in r1 (`CoupledSystem._loaded`)."""
         return self.flight.load_factor / self.q * math.cos(math.radians(alpha))
@@ -162,17 +218,20 @@ class CaseSpace(DesignSpace):
         self.alpha = alpha
         p = self.parameters(jig, tube)
         p[self.layout.slot("alpha")] = alpha
-        rows = None if self.mass is None else self._mass_rows(tube)
-        load = None if rows is None else self._share(alpha) * rows
-        x = self._equilibrium(p, load)
+        share = self._share(alpha)
+        x = self._equilibrium(p, None if self.mass is None else self._mass_load(tube, share))
         self.evaluations += 1
         self.x = x
         ev, terms = self.system.model.evaluate_with_alpha(x, p)
-        if rows is not None and load is not None:
+        if self.mass is not None:
+            rows, rows_x = self._mass_terms(x, tube)
+            if self.layout.exact:
+                self.along = deformed_stations(self.wing, x[self.layout.slope])[0]
             # d(cos(alpha))/d(alpha) per degree: the mass's part of dr1/dalpha.
             n_over_q = self.flight.load_factor / self.q
             turning = -n_over_q * math.sin(math.radians(alpha)) * math.radians(1.0) * rows
-            ev = dataclasses.replace(ev, r1=ev.r1 + load)
+            jacobian1 = ev.jacobian1 if rows_x is None else ev.jacobian1 + share * rows_x
+            ev = dataclasses.replace(ev, r1=ev.r1 + share * rows, jacobian1=jacobian1)
             terms = dataclasses.replace(terms, r1=terms.r1 + turning)
         point = self._functions(v, x, ev, terms, tube)
         if self.flight.alpha_index is not None:
@@ -190,9 +249,13 @@ class CaseSpace(DesignSpace):
             r_v[:, self.walls] += self.q * self._mass_wall_rows(tube)
 
     def _mass_per_wall(self, tube: TubeSpar) -> np.ndarray:
-        """(N, N) [N m / m] d(one-g inertial bending moment)/d(wall thickness)."""
+        """(N, N) [N m / m] d(one-g inertial bending moment)/d(wall thickness), about the
+        exact beam's deformed stations at the last equilibrium (`along`)."""
         d_area = math.pi * (tube.outer_diameter - 2 * tube.wall_thickness)  # dA/dt [m]
-        return self.per_mass * (tube.material.density * d_area)[None, :]
+        per_mass = self.per_mass
+        if self.along is not None:
+            per_mass = spar_bending_per_mass(self.wing, self.along)
+        return per_mass * (tube.material.density * d_area)[None, :]
 
     def _mass_wall_rows(self, tube: TubeSpar) -> np.ndarray:
         """(n_unknowns, N) d(mass rows in r1)/d(walls) through the spar's own mass, at fixed

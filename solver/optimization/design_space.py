@@ -164,9 +164,14 @@ class DesignSpace:
 
     # --- the equilibrium of a design
 
-    def _equilibrium(self, p: np.ndarray, load: np.ndarray | None = None) -> np.ndarray:
-        """The design's equilibrium from the last one; `load`: (n_unknowns,) what the wing's
-        own mass adds to r1 (per unit q, constant in x), or None."""
+    def _equilibrium(
+        self,
+        p: np.ndarray,
+        load: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | None]] | None = None,
+    ) -> np.ndarray:
+        """The design's equilibrium from the last one; `load`: x -> what the wing's own mass
+        adds to r1 (n_unknowns,) per unit q and its derivative in x (None: constant), or
+        None (`_loaded`)."""
         model, q, layout = self.system.model, self.q, self.layout
         if self.rigid:
             # Undeformed: the tangency rows alone, linear in the circulation at z = 0.
@@ -393,19 +398,23 @@ class DesignSpace:
 def _loaded(
     evaluate: Callable[[np.ndarray], Evaluation],
     residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
-    load: np.ndarray,
+    load: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | None]],
 ) -> tuple[
     Callable[[np.ndarray], Evaluation], Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 ]:
-    """The model's evaluations with `load` (n_unknowns,) added to r1: a load constant in x
+    """The model's evaluations with `load(x)` added to r1: (n_unknowns,) per unit q, and its
+    derivative in x (n_unknowns, n_unknowns) added to J1, None where it is constant in x
     (`solver.statics.system.CoupledSystem._loaded`)."""
 
     def loaded_evaluate(x: np.ndarray) -> Evaluation:
         ev = evaluate(x)
-        return dataclasses.replace(ev, r1=ev.r1 + load)
+        rows, rows_x = load(x)
+        if rows_x is None:
+            return dataclasses.replace(ev, r1=ev.r1 + rows)
+        return dataclasses.replace(ev, r1=ev.r1 + rows, jacobian1=ev.jacobian1 + rows_x)
 
     def loaded_residual(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         r0, r1 = residual(x)
-        return r0, r1 + load
+        return r0, r1 + load(x)[0]
 
     return loaded_evaluate, loaded_residual

@@ -65,7 +65,9 @@ __all__ = [
     "InertialLoads",
     "deformed_loads",
     "deformed_rows",
+    "deformed_stations",
     "inertial_loads",
+    "strip_station_weights",
 ]
 
 GRAVITY = 9.80665  # [m/s^2] standard gravity (3rd CGPM, 1901; ISO 80000-3)
@@ -148,7 +150,7 @@ def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoad
         bending[inboard] += weight * item.mass * (arc[k] - arc[inboard])
         torque[inboard] += -weight * item.mass * item.offset
         total += 2 * item.mass
-    station_weights = _station_weights(weight * strip_mass, mass, weight, n)
+    station_weights = _station_weights(weight * strip_mass, mass, weight)
     rows = np.zeros(layout.n_unknowns)
     stiffness = (wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling)
     rows[layout.bending_rows], rows[layout.torsion_rows] = coupled_trapezoid(
@@ -159,14 +161,24 @@ def _inertial_loads(wing: Wing, mass: MassModel, layout: Layout) -> InertialLoad
     return InertialLoads(shear, bending, torque, rows, total, station_weights)
 
 
-def _station_weights(strip_force: np.ndarray, mass: MassModel, weight: float, n: int) -> np.ndarray:
-    """(N, N) [N]: M_i = sum_j W_ij S_j, each strip's weight at its chord's middle (half on
-    either station), each concentrated mass at its station, less the outboard weight at S_i."""
+def strip_station_weights(strip_force: np.ndarray) -> np.ndarray:
+    """(N, N) [N] the station weights (`InertialLoads.station_weights`) of the strips' forces
+    normal to the plane (N-1,) [N], each at its chord's middle: M_i = sum_{j >= i} F_j
+    ((S_j + S_{j+1}) / 2 - S_i), half of F_j on either station, less the outboard force at
+    S_i. Linear in the forces."""
+    n = strip_force.size + 1
     weights = np.zeros((n, n))
-    for i in range(n):
+    for i in range(n - 1):
         weights[i, i:-1] += strip_force[i:] / 2
         weights[i, i + 1 :] += strip_force[i:] / 2
         weights[i, i] -= strip_force[i:].sum()
+    return weights
+
+
+def _station_weights(strip_force: np.ndarray, mass: MassModel, weight: float) -> np.ndarray:
+    """(N, N) [N]: the strips' (`strip_station_weights`) and each concentrated mass's, at its
+    station, less its weight at S_i for every station inboard of it."""
+    weights = strip_station_weights(strip_force)
     for item in mass.concentrated:
         k = item.station
         force = weight * item.mass
@@ -185,16 +197,22 @@ def _stations_function(n: int) -> ca.Function:
     return ca.Function("dead_load_stations", [beta, h], [along, ca.jacobian(along, beta)])
 
 
+def deformed_stations(wing: Wing, beta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(N,) [m] the exact beam's stations along the jig axis at rotations beta (N,) [rad]
+    (its foreshortened reference line, `solver.model.geometry.reference_line`), and their
+    derivative in beta (N, N) [m/rad]."""
+    along, along_beta = _stations_function(wing.n_stations)(beta, np.diff(arc_length(wing)))
+    return np.asarray(along).ravel(), np.asarray(along_beta)
+
+
 def deformed_loads(inertia: InertialLoads, wing: Wing, beta: np.ndarray) -> DeformedInertialLoads:
     """The one-g inertial loads about the exact beam's deformed stations at rotations beta (N,)
     [rad] (module docstring), with their derivatives in beta."""
-    h = np.diff(arc_length(wing))
-    along, along_beta = _stations_function(wing.n_stations)(beta, h)
-    cos = np.cos(beta)
+    along, along_beta = deformed_stations(wing, beta)
     return DeformedInertialLoads(
-        bending_moment=inertia.station_weights @ np.asarray(along).ravel(),
-        torque=cos * inertia.torque,
-        bending_beta=inertia.station_weights @ np.asarray(along_beta),
+        bending_moment=inertia.station_weights @ along,
+        torque=np.cos(beta) * inertia.torque,
+        bending_beta=inertia.station_weights @ along_beta,
         torque_beta=np.diag(-np.sin(beta) * inertia.torque),
     )
 

@@ -155,7 +155,9 @@ class CoupledSystem:
         r1 = evaluation.r1 + share * rows
         if rows_x is None:
             return dataclasses.replace(evaluation, r1=r1)
-        return dataclasses.replace(evaluation, r1=r1, jacobian1=evaluation.jacobian1 + share * rows_x)
+        return dataclasses.replace(
+            evaluation, r1=r1, jacobian1=evaluation.jacobian1 + share * rows_x
+        )
 
     def with_flow(self, flow: Flow) -> CoupledSystem:
         """The same wing and alpha with another `flow`."""
