@@ -17,6 +17,7 @@ import time
 
 import numpy as np
 
+from solver.dynamics.aerodynamic_forces import MAX_REDUCED_FREQUENCY
 from solver.gusts.discrete import DiscreteResponse, discrete_response, peaks, profile_response
 from solver.gusts.frequency_response import (
     lattice_a_bar,
@@ -142,6 +143,12 @@ def gust_analysis(
     )
     turbulence = None
     findings = _findings(settings, max(c.gust_velocity for c in cases) / model.velocity)
+    if isinstance(model, LatticeGustModel) and model.dropped:
+        findings.append(
+            f"{model.dropped} of the modes asked for left out: their reduced frequencies lie "
+            f"past the unsteady lattice's largest ({MAX_REDUCED_FREQUENCY:g}), where it "
+            "resolves no aerodynamics"
+        )
     if settings.turbulence:
         if isinstance(model, LatticeGustModel):
             abar = lattice_a_bar(model)

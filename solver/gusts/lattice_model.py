@@ -54,6 +54,7 @@ from functools import cached_property
 import numpy as np
 import scipy.interpolate
 
+from solver.dynamics.aerodynamic_forces import MAX_REDUCED_FREQUENCY
 from solver.dynamics.lattice_loads import lattice_loads
 from solver.dynamics.modes import structure
 from solver.dynamics.reduced import reduced_frequency_nodes
@@ -90,8 +91,9 @@ class LatticeGustModel:
     """The frequency-domain gust model (module docstring): the same fields as `GustModel` that
     the analysis reads (wing, velocity [m/s], density [kg/m^3], weight [N], clamped,
     frequencies (r,) [rad/s] in vacuum, semichord (m,) [m], delay (m,) [s] each strip's
-    leading edge's, lift_slope [1/rad], area [m^2], equilibrium), the chordwise panels, and
-    the tables.
+    leading edge's, lift_slope [1/rad], area [m^2], equilibrium), the chordwise panels, the
+    modes asked for but dropped (past the lattice's largest reduced frequency), and the
+    tables.
 
     Tables, at the reduced frequencies `reduced` (K,) (the last infinite), rows
     (r [+1 free] generalised; 3N station loads; 1 total vertical force) per unit q:
@@ -115,6 +117,7 @@ class LatticeGustModel:
     area: float
     equilibrium: Equilibrium
     chordwise: int
+    dropped: int
     reference_semichord: float
     reduced: np.ndarray
     modal: np.ndarray
@@ -275,11 +278,13 @@ def lattice_gust_model(
     modes: int | None = 8,
     clamped: bool = False,
     top_frequency: float | None = None,
+    nodes: int = _NODES,
 ) -> LatticeGustModel:
     """The frequency-domain gust model of `wing` (with its mass) in `flight` with the unsteady
     lattice, linearised about the 1 g trim as `solver.gusts.model.gust_model` is; tabulated up
     to `top_frequency` [rad/s] (default: twice the highest mode kept; at least reduced
-    frequency 2, at most the lattice's 10). Raises as `gust_model`."""
+    frequency 2, at most the lattice's 10) at `nodes` reduced frequencies and the infinite one.
+    Raises as `gust_model`."""
     options = options or SolverOptions()
     if (flight.weight is None and not clamped) or flight.velocity is None:
         raise InvalidInput("flight.weight", "a gust analysis needs the aircraft's weight")
@@ -293,13 +298,19 @@ def lattice_gust_model(
     m, n_dof = beam.n_strips, beam.n_dof
     r = n_dof if modes is None else min(modes, n_dof)
     omega2, right, left = beam.modes
+    reference = wing.mean_chord / 2
+    # Modes past the lattice's largest reduced frequency have no aerodynamics it resolves (no
+    # wave on the chord of 8 panels; its tables end there): they are left out, said so.
+    within = int(
+        np.sum(np.sqrt(np.maximum(omega2, 0.0)) * reference / velocity <= MAX_REDUCED_FREQUENCY)
+    )
+    asked, r = r, max(1, min(r, within))
     basis, project = right[:, :r], left[:, :r].T
     frequencies = np.sqrt(omega2[:r])
-    reference = wing.mean_chord / 2
     wanted = 2 * float(frequencies.max()) if top_frequency is None else top_frequency
-    top = min(max(_MIN_TOP, wanted * reference / velocity), 10.0)
-    nodes = reduced_frequency_nodes(top, _NODES)
-    kappa = nodes / reference
+    top = min(max(_MIN_TOP, wanted * reference / velocity), MAX_REDUCED_FREQUENCY)
+    reduced = reduced_frequency_nodes(top, nodes)
+    kappa = reduced / reference
 
     # Rows kept of the strip loads: generalised (L^T, and the total vertical force when
     # free), the stations' loads and the total vertical force.
@@ -367,8 +378,9 @@ def lattice_gust_model(
         area=wing.planform_area / 2,
         equilibrium=equilibrium,
         chordwise=chordwise,
+        dropped=asked - r,
         reference_semichord=reference,
-        reduced=nodes,
+        reduced=reduced,
         modal=modal,
         plunge=plunge,
         gust=gust,
