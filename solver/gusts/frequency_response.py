@@ -170,8 +170,8 @@ def lattice_discrete_responses(
         rest = lattice_discrete_responses(
             model, gradients[~short], amplitudes[~short], stretch, harmonics
         )
-        found = {id_: r for id_, r in zip(np.flatnonzero(short), first, strict=True)}
-        found |= {id_: r for id_, r in zip(np.flatnonzero(~short), rest, strict=True)}
+        found = {int(i): r for i, r in zip(np.flatnonzero(short), first, strict=True)}
+        found |= {int(i): r for i, r in zip(np.flatnonzero(~short), rest, strict=True)}
         return [found[i] for i in range(gradients.size)]
     v = model.velocity
     durations = 2 * gradients / v

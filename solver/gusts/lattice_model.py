@@ -181,7 +181,7 @@ class LatticeGustModel:
         p = r if self.clamped else r + 1
         loads = np.concatenate([loads_c, loads_v[:, :, None]], axis=2)[:, :, :p]
         w2 = (omega**2)[:, None, None]
-        dynamic = -q * loads[:, :p, :]
+        dynamic: np.ndarray = (-q * loads[:, :p, :]).astype(complex)
         dynamic[:, :r, :r] += np.diag(self.omega2)[None] - w2 * np.eye(r)[None]
         if not self.clamped:
             dynamic[:, :r, r] += 1j * omega[:, None] * self.plunge_inertia[None]
