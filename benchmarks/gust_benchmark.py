@@ -11,6 +11,9 @@ model are built anew. Medians of CPU and wall time (a shared 2-core machine). Ca
   < 200 ms), without turbulence;
 - continuous turbulence's A-bar on a built model (issue 37's target: < 50 ms);
 - the whole analysis (/gust's default: 20 gradients, turbulence, 4 modes);
+- the same with the unsteady lattice (options.aerodynamics "unsteady_lattice": the
+  frequency-domain model of `solver.gusts.lattice_model`, the tuned-gust search by FFT and
+  A-bar, `solver.gusts.frequency_response`), against strip theory's state space in the run;
 and the figures: the tuned gust, its load factor beside Pratt's, A-bar of the load factor.
 """
 
@@ -30,6 +33,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import solver
+from solver.gusts.frequency_response import lattice_a_bar, top_frequency
+from solver.gusts.lattice_model import lattice_gust_model
 from solver.gusts.model import gust_model
 from solver.gusts.turbulence import a_bar
 from solver.model.layout import Layout
@@ -67,6 +72,13 @@ def main() -> None:
     print(f"load average {os.getloadavg()[0]:.2f} (2 cores, shared)")
     search = solver.GustSettings(turbulence=False)
     built = {i: gust_model(_wing(i), FLIGHT, None, 4) for i in range(-1, repeats)}
+    unsteady = solver.SolverOptions(aerodynamics="unsteady_lattice")
+    strip = solver.SolverOptions(aerodynamics="strip")
+    top = top_frequency(12.0, 9.0)
+    lattice_built = {
+        i: lattice_gust_model(_wing(i), FLIGHT, unsteady, 4, top_frequency=top)
+        for i in range(-1, repeats)
+    }
     cases: dict[str, Callable[[int], object]] = {
         "static trimmed equilibrium (baseline)": lambda i: solver.solve(_wing(i), FLIGHT),
         "gust model (trim, modes, system)": lambda i: gust_model(_wing(i), FLIGHT, None, 4),
@@ -77,6 +89,22 @@ def main() -> None:
         "whole /gust analysis (20 gradients, turbulence)": lambda i: solver.gust_analysis(
             _wing(i), FLIGHT
         ),
+        "strip: tuned-gust search, 20 gradients": lambda i: solver.gust_analysis(
+            _wing(i), FLIGHT, search, strip
+        ),
+        "strip: whole /gust analysis": lambda i: solver.gust_analysis(
+            _wing(i), FLIGHT, None, strip
+        ),
+        "unsteady lattice: model (trim, modes, 17 k)": lambda i: lattice_gust_model(
+            _wing(i), FLIGHT, unsteady, 4, top_frequency=top
+        ),
+        "unsteady lattice: tuned-gust search, 20 gradients": lambda i: solver.gust_analysis(
+            _wing(i), FLIGHT, search, unsteady
+        ),
+        "unsteady lattice: A-bar on a built model": lambda i: lattice_a_bar(lattice_built[i]),
+        "unsteady lattice: whole /gust analysis": lambda i: solver.gust_analysis(
+            _wing(i), FLIGHT, None, unsteady
+        ),
     }
     base = None
     print(f"{'case':52s} {'CPU ms':>8s} {'wall ms':>8s} {'x baseline':>10s}")
@@ -84,8 +112,13 @@ def main() -> None:
         cpu, wall = _timed(run, repeats)
         base = base or cpu
         print(f"{name:52s} {1e3 * cpu:8.1f} {1e3 * wall:8.1f} {cpu / base:10.1f}")
-    result = solver.gust_analysis(_wing(0), FLIGHT)
+    for label, options in (("lattice", None), ("strip", strip), ("unsteady lattice", unsteady)):
+        _figures(label, solver.gust_analysis(_wing(0), FLIGHT, None, options))
+
+
+def _figures(label: str, result: solver.GustResult) -> None:
     tuned = result.gusts[result.tuned_load_factor]
+    print(label + ": ", end="")
     print(
         f"tuned gust H = {tuned.gradient:.3g} m: n = {tuned.max_load_factor:.4f}; Pratt "
         f"(mu_g = {result.mass_ratio:.3g}, K_g = {result.pratt_alleviation:.3f}): "

@@ -1,7 +1,8 @@
 """The gust loads of one flight condition: the model (`solver.gusts.model`), the CS-25.341(a)
 1-cos gusts over the gradients with the tuned ones (`solver.gusts.discrete`), continuous
-turbulence (`solver.gusts.turbulence`), the 1 g trimmed loads they add to, and Pratt's K_g
-beside the model's load factor.
+turbulence (`solver.gusts.turbulence`); with the unsteady lattice the frequency-domain model
+(`solver.gusts.lattice_model`) and its responses (`solver.gusts.frequency_response`); the 1 g
+trimmed loads they add to, and Pratt's K_g beside the model's load factor.
 
 The search for the tuned gust evaluates every gradient asked (20 from 9 to 107 m by default)
 and reports, per load quantity, the one giving its largest value: a grid search, as Nastran's
@@ -16,7 +17,16 @@ import time
 
 import numpy as np
 
+from solver.dynamics.aerodynamic_forces import MAX_REDUCED_FREQUENCY
 from solver.gusts.discrete import DiscreteResponse, discrete_response, peaks, profile_response
+from solver.gusts.frequency_response import (
+    lattice_a_bar,
+    lattice_discrete_responses,
+    lattice_profile_response,
+    resolved_frequency,
+    top_frequency,
+)
+from solver.gusts.lattice_model import LatticeGustModel, lattice_gust_model
 from solver.gusts.model import GustModel, gust_model
 from solver.gusts.profiles import (
     GRADIENT_RANGE,
@@ -39,6 +49,8 @@ __all__ = ["gust_analysis", "gust_load_cases"]
 _HISTORY = 200  # samples kept of each time history
 # [rad] a gust angle past which attached, linear lift is no longer a fair model (~10 deg).
 _LINEAR_ANGLE = 0.17
+# The share of A-bar from the lattice's unresolved frequencies past which the answer says so.
+_UNRESOLVED = 0.05
 
 
 def gust_analysis(
@@ -52,7 +64,15 @@ def gust_analysis(
     divergence, `InvalidInput` without mass or weight."""
     started = time.perf_counter()
     settings = settings or GustSettings()
-    model = gust_model(wing, flight, options, settings.modes, settings.clamped)
+    unsteady = (options or SolverOptions()).aerodynamics == "unsteady_lattice"
+    model: GustModel | LatticeGustModel
+    if unsteady:
+        top = top_frequency(flight.velocity or 1.0, settings.min_gradient)
+        model = lattice_gust_model(
+            wing, flight, options, settings.modes, settings.clamped, top_frequency=top
+        )
+    else:
+        model = gust_model(wing, flight, options, settings.modes, settings.clamped)
     model.check_stable()
     eas = model.velocity * math.sqrt(model.density / SEA_LEVEL_DENSITY)
     to_true = math.sqrt(SEA_LEVEL_DENSITY / model.density)  # EAS -> TAS
@@ -71,9 +91,17 @@ def gust_analysis(
     one_g = np.r_[stations.shear, stations.bending_moment, stations.torque]
     cases = []
     upper, lower = np.full(3 * n, -np.inf), np.full(3 * n, np.inf)
-    for gradient in gradients:
-        amplitude = design_gust_velocity(gradient, reference, alleviation) * to_true
-        response = discrete_response(model, float(gradient), amplitude)
+    amplitudes = [
+        design_gust_velocity(gradient, reference, alleviation) * to_true for gradient in gradients
+    ]
+    if isinstance(model, LatticeGustModel):
+        responses = lattice_discrete_responses(model, gradients, np.array(amplitudes))
+    else:
+        responses = [
+            discrete_response(model, float(gradient), amplitude)
+            for gradient, amplitude in zip(gradients, amplitudes, strict=True)
+        ]
+    for gradient, response in zip(gradients, responses, strict=True):
         high, low = peaks(response.outputs)
         upper = np.maximum(upper, np.maximum(high[: 3 * n], -low[: 3 * n]))
         lower = np.minimum(lower, np.minimum(low[: 3 * n], -high[: 3 * n]))
@@ -81,8 +109,11 @@ def gust_analysis(
         cases.append(_case(model, response, high, low, name))
     profile = None
     if settings.profile_time is not None and settings.profile_velocity is not None:
-        response = profile_response(
-            model, np.array(settings.profile_time), np.array(settings.profile_velocity)
+        given = np.array(settings.profile_time), np.array(settings.profile_velocity)
+        response = (
+            lattice_profile_response(model, *given)
+            if isinstance(model, LatticeGustModel)
+            else profile_response(model, *given)
         )
         high, low = peaks(response.outputs)
         # A given gust is answered as given (not mirrored: it need not be symmetric).
@@ -111,8 +142,19 @@ def gust_analysis(
         wing_loading, eas, tuned.gust_velocity / to_true, model.lift_slope, k_g
     )
     turbulence = None
+    findings = _findings(settings, max(c.gust_velocity for c in cases) / model.velocity)
+    if isinstance(model, LatticeGustModel) and model.dropped:
+        findings.append(
+            f"{model.dropped} of the modes asked for left out: their reduced frequencies lie "
+            f"past the unsteady lattice's largest ({MAX_REDUCED_FREQUENCY:g}), where it "
+            "resolves no aerodynamics"
+        )
     if settings.turbulence:
-        abar = a_bar(model)
+        if isinstance(model, LatticeGustModel):
+            abar = lattice_a_bar(model)
+            findings += _unresolved(model, abar)
+        else:
+            abar = a_bar(model)
         intensity = turbulence_intensity(settings.altitude, dive) * alleviation
         spread = intensity * abar[: 3 * n]
         turbulence = TurbulenceLoads(
@@ -153,13 +195,30 @@ def gust_analysis(
         tuned_torque=int(np.argmax(root_torque)),
         envelope=envelope,
         turbulence=turbulence,
-        findings=_findings(settings, max(c.gust_velocity for c in cases) / model.velocity),
+        findings=findings,
         solve_time=time.perf_counter() - started,
     )
 
 
+def _unresolved(model: LatticeGustModel, abar: np.ndarray) -> list[str]:
+    """A finding when continuous turbulence's A-bar of the load factor takes more than
+    `_UNRESOLVED` of its value from gusts shorter than the lattice resolves (four chordwise
+    panels per wavelength: past that the lattice's gust lift does not fall as Sears' does)."""
+    limit = resolved_frequency(model)
+    within = lattice_a_bar(model, limit)
+    index = model.output_slices["load_factor"]
+    full, resolved = float(abar[index]), float(within[index])  # type: ignore[index]
+    if full <= 0 or resolved >= (1 - _UNRESOLVED) * full:
+        return []
+    return [
+        f"continuous turbulence: {1 - resolved / full:.0%} of the load factor's A-bar comes "
+        f"from frequencies above {limit:.3g} rad/s, gusts shorter than four chordwise panels "
+        "of the unsteady lattice: more chordwise panels resolve them"
+    ]
+
+
 def _case(
-    model: GustModel,
+    model: GustModel | LatticeGustModel,
     response: DiscreteResponse,
     high: np.ndarray,
     low: np.ndarray,

@@ -24,8 +24,9 @@ __all__ = ["GustInput"]
 @dataclass(frozen=True, eq=False)
 class GustInput:
     """Gust loads: the aircraft's plunge and the wing's modes with Wagner's and Kuessner's
-    lags, about the 1 g trim of `flight`, in the 1-cos gusts of every gradient (the tuned
-    ones) and in continuous turbulence."""
+    lags (with the unsteady lattice: its transfer functions in the frequency domain), about
+    the 1 g trim of `flight`, in the 1-cos gusts of every gradient (the tuned ones) and in
+    continuous turbulence."""
 
     wing: Wing = parameter("", "the wing, with its mass", form="nested", given=Wing)
     flight: FlightCondition = parameter(
@@ -51,12 +52,6 @@ class GustInput:
         require_mass(self.wing, "gust loads need it")
         if self.flight.weight is None:
             raise InvalidInput("flight.weight", "a gust analysis needs the aircraft's weight")
-        if self.modelled.aerodynamics == "unsteady_lattice":
-            raise InvalidInput(
-                "options.aerodynamics",
-                "gust loads take 'strip' or 'lattice' (the lattice's steady loading with the "
-                "strips' Wagner and Kuessner lags)",
-            )
 
     @property
     def modelled(self) -> SolverOptions:
