@@ -292,7 +292,10 @@ and the wing's lowest natural modes, with strip aerodynamics lagged by Wagner's 
 Jones' approximation) for the motion and Kuessner's (Sears and Sparks') for the gust, the
 lattice's steady spanwise loading as the 3D correction (`options.aerodynamics` lattice, the
 default, or strip), each strip meeting the gust when it reaches its leading edge, linearised
-about the 1 g trim of `flight`.
+about the 1 g trim of `flight`. With `options.aerodynamics` unsteady_lattice the 3D unsteady
+lattice's transfer functions of the modes and of the gust (each panel meeting it at its own
+time) instead, answered in the frequency domain and transformed to time (as MSC Nastran's SOL
+146): the same answer's form.
 
 Answers the CS-25.341(a) 1-cos gusts, U_ds = U_ref F_g (H / 107 m)^(1/6), at every gradient H
 (default 20 from 9 to 107 m): each one's load factor, incremental shear, bending moment and
