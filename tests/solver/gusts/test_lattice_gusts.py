@@ -113,3 +113,33 @@ def test_ul5_bad_input_is_refused_naming_the_field(changes: dict, field: str) ->
     with pytest.raises(solver.InvalidInput) as caught:
         GustInput(wing=wing, flight=flight, options=UNSTEADY)
     assert caught.value.field == field
+
+
+def test_ul6_the_gust_answers_stability_is_flutters() -> None:
+    # The Goland wing, clamped, 1.02 kg/m^3, 4 chordwise panels on 8 strips: the p-k method
+    # on the same lattice flutters at 169.5 m/s (docs/accuracy.md's convergence). The gust
+    # model's argument-principle count (it has no state matrix) agrees: answered at 155 m/s,
+    # DynamicInstability at 185 m/s, said to be flutter (on 16 strips, where p-k gives 172.2
+    # m/s at 68.2 rad/s: answered at 165, flutter at 67.3 rad/s at 175, measured).
+    from solver.inputs.gust import GustSettings
+    from tests.flutter_reference import GOLAND, goland_mass
+
+    wing = solver.Wing.create(
+        np.linspace(0, GOLAND["semispan"], 9),
+        GOLAND["chord"],
+        GOLAND["elastic_axis"],
+        GOLAND["bending_stiffness"],
+        GOLAND["torsional_stiffness"],
+        mass=goland_mass(9),
+    )
+    options = solver.SolverOptions(aerodynamics="unsteady_lattice", chordwise_panels=4)
+    settings = GustSettings(clamped=True, turbulence=False)
+
+    def answer(velocity: float) -> solver.GustResult:
+        flight = solver.FlightCondition(velocity, 0.5, 1.02)
+        return solver.gust_analysis(wing, flight, settings, options)
+
+    assert answer(155.0).envelope is not None
+    with pytest.raises(solver.DynamicInstability) as unstable:
+        answer(185.0)
+    assert "flutter" in str(unstable.value)
