@@ -48,7 +48,7 @@ from solver.errors import ConvergenceError, InvalidInput
 from solver.inputs.mass import MassModel, section_inertia
 from solver.inputs.wing import Wing
 from solver.model.beam import coupled_trapezoid, section_compliance
-from solver.model.geometry import DEG
+from solver.model.geometry import DEG, in_wing_plane
 from solver.results.flutter import ModeShape, NaturalModes
 
 __all__ = [
@@ -120,8 +120,23 @@ class Structure:
 
     def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
         """(n, P) the equivalent strip loads of the forces (P, 3) [N] at the points (P, 3) [m],
-        each on the strip `strips` (P,) holds, taken as the static model takes its panels'
-        (`solver.model.residual`): the vertical force bends the beam about the elastic axis from
+        both in geometry axes (the lattice's: a dihedral wing's plane turned about x), each on
+        the strip `strips` (P,) holds: `wing_plane_loads` of their components in the wing's
+        frame (`solver.model.geometry.in_wing_plane`), so that only the force normal to the
+        wing's plane bends the beam, as in the static model."""
+        return self.wing_plane_loads(
+            np.array(in_wing_plane(points.T, self.wing)).T,
+            np.array(in_wing_plane(forces.T, self.wing)).T,
+            strips,
+        )
+
+    def wing_plane_loads(
+        self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray
+    ) -> np.ndarray:
+        """(n, P) the equivalent strip loads of the forces (P, 3) [N] at the points (P, 3) [m],
+        both in the wing's frame (x, y in its plane, z normal to it), each on the strip
+        `strips` (P,) holds, taken as the static model takes its panels'
+        (`solver.model.residual`): the normal force bends the beam about the elastic axis from
         where it acts (a force at the strip's midpoint and a bending couple), the moment about
         the undeformed elastic axis twists it."""
         m, count = self.n_strips, points.shape[0]

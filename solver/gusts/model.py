@@ -335,7 +335,7 @@ def _plunge_inertia(beam: Structure) -> tuple[np.ndarray, np.ndarray]:
         x_ea = wing.y[i] * math.tan(sweep) + item.offset
         point = np.array([[x_ea, wing.y[i], 0.0]])
         force = np.array([[0.0, 0.0, item.mass]])
-        rigid = rigid + beam.point_loads(point, force, np.array([i - 1]))[:, 0]
+        rigid = rigid + beam.wing_plane_loads(point, force, np.array([i - 1]))[:, 0]
         vertical[i - 1] += item.mass
         vertical[m + i - 1] -= item.mass * item.offset
     return rigid, vertical

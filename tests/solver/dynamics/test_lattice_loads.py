@@ -121,3 +121,22 @@ def test_a_long_wing_approaches_theodorsens_sections():
     assert 0.005 < steady < 0.015
     assert slow < 0.03 and fast < 0.07
     assert errors[8][1] < 2 / 3 * errors[4][1] and errors[8][2] < 2 / 3 * errors[4][2]
+
+
+@pytest.mark.parametrize("dihedral", [10.0, 30.0])
+def test_a_dihedral_wing_carries_the_flat_wings_section_loads(dihedral: float):
+    """A wing turned about the flow's axis by its dihedral meets the same flow: the middle
+    strip of the aspect-ratio-160 wing above, heaving and pitching normal to its plane, carries
+    the flat wing's loads. Measured: 4.6e-5 (10 deg) and 4.6e-4 (30 deg) of the largest load
+    at k -> 0, less at k = 0.1 to 2 (the two halves' V, 40 chords away, seen through the
+    steady wake). Asserted within 1e-3. (Until round 4 the pressure patches were taken in
+    geometry axes as if flat: 34 % off at k = 0.1 with 10 deg of dihedral.)"""
+    flat, strip = long_wing(80.0, 0.35)
+    turned = solver.Wing.create(flat.y, 1.0, 0.35, 1e6, 1e6, dihedral=dihedral)
+    mass = MassModel.create(flat.n_stations, 1.0, 0.4, 0.1)
+    width = flat.y[strip + 1] - flat.y[strip]
+    reduced = [1e-8, 0.1, 0.5, 2.0]
+    expected = _sections(_loads(flat, mass, 4), strip, width, reduced)
+    ours = _sections(_loads(turned, mass, 4), strip, width, reduced)
+    for i in range(len(reduced)):
+        assert np.abs(ours[i] - expected[i]).max() < 1e-3 * np.abs(expected[i]).max()
