@@ -162,9 +162,17 @@ class LagBeam(ExactBeam):
             self.outboard(loads, exact + 1),
             self.outboard(loads, exact),
         )
-        beta, phi, psi = z[n : 2 * n], z[2 * n : 3 * n] * DEG, z[4 * n : 5 * n]
+        beta, psi = z[n : 2 * n], z[4 * n : 5 * n]
         line = lag_reference_line(beta, psi, self.h)
-        torque, flap, lag = section_moments(moment, force, line, beta, psi, _scale)
+        return self.rates_of(section_moments(moment, force, line, beta, psi, _scale), z)
+
+    def rates_of(self, moments: tuple[ca.MX, ca.MX, ca.MX], z: ca.MX) -> tuple[ca.MX, ca.MX, ca.MX]:
+        """(N, c) beta', k_t and psi' [1/m] of the stations' T, M_f and M_l (N, c) [N m]
+        (`section_moments`) at the beam's unknowns z: the constitutive law in the twisted
+        section's axes (module docstring)."""
+        n = self.layout.n
+        torque, flap, lag = moments
+        beta, phi = z[n : 2 * n], z[2 * n : 3 * n] * DEG
         cos_t, sin_t = ca.cos(phi), ca.sin(phi)
         flap_s = _scale(cos_t, flap) - _scale(sin_t, lag)
         lag_s = _scale(sin_t, flap) + _scale(cos_t, lag)

@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
-from solver.inputs.options import SolverOptions, refuse_lag, require_flow_model
+from solver.inputs.options import SolverOptions, check_lag, refuse_lag, require_flow_model
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
 from solver.model.layout import Aerodynamics, Layout, Structure
@@ -184,9 +184,9 @@ class CoupledSystem:
     def layout(self) -> Layout:
         """The mesh, with lag when the exact beam's wing has an in-plane stiffness
         (`solver.model.lag_beam`)."""
-        lag = self.structure == "geometrically_exact" and (
-            self.wing.in_plane_bending_stiffness is not None
-        )
+        stiffness = self.wing.in_plane_bending_stiffness
+        check_lag(stiffness, SolverOptions(structure=self.structure), "")
+        lag = self.structure == "geometrically_exact" and stiffness is not None
         return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics, self.structure, lag)
 
     @cached_property
