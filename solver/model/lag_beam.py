@@ -128,11 +128,11 @@ def section_moments(
 
 
 def _cos(angle: Any) -> Any:
-    return ca.cos(angle) if isinstance(angle, ca.SX | ca.MX) else np.cos(angle)
+    return ca.cos(angle) if isinstance(angle, ca.SX | ca.MX | ca.DM) else np.cos(angle)
 
 
 def _sin(angle: Any) -> Any:
-    return ca.sin(angle) if isinstance(angle, ca.SX | ca.MX) else np.sin(angle)
+    return ca.sin(angle) if isinstance(angle, ca.SX | ca.MX | ca.DM) else np.sin(angle)
 
 
 def _scale(factors: ca.MX, matrix: ca.MX) -> ca.MX:
