@@ -26,6 +26,7 @@ SOLVER_LAYERS: list[list[str]] = [
     ["model.geometry", "model.horseshoe"],
     ["model.vlm", "model.flow_vlm", "model.aerodynamics", "model.beam"],
     ["model.exact_beam"],
+    ["model.lag_beam"],
     ["model.strip", "model.symbols"],
     ["model.induced"],
     ["model.flow"],

@@ -67,7 +67,7 @@ from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.fields import integer, is_number, number, parameter, specs
 from solver.inputs.flight import check_over_airspeeds, dynamic_pressure
 from solver.inputs.mass import MassModel
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.numerics.evaluation import Evaluation
 from solver.results.flutter import FlutterInfo, FlutterPoint, FlutterResult
@@ -209,6 +209,7 @@ def flutter(
     (status "no_equilibrium")."""
     started = time.perf_counter()
     options = options or SolverOptions()
+    check_lag(wing.in_plane_bending_stiffness, options, "vibration modes and flutter")
     settings = flutter_options or FlutterOptions()
     speeds = _check(wing, velocities, density, alpha, lift)
     beam = structure(wing, mass)

@@ -46,6 +46,7 @@ import scipy.linalg
 
 from solver.errors import ConvergenceError, InvalidInput
 from solver.inputs.mass import MassModel, section_inertia
+from solver.inputs.options import check_lag
 from solver.inputs.wing import Wing
 from solver.model.beam import coupled_trapezoid, section_compliance
 from solver.model.geometry import DEG, in_wing_plane
@@ -356,6 +357,7 @@ def natural_modes(
 
     Each shape is scaled so that the largest vertical displacement of a leading or a trailing
     edge is 1 m, and that displacement is upward. Raises `InvalidInput` without a mass model."""
+    check_lag(wing.in_plane_bending_stiffness, None, "vibration modes")
     beam = structure(wing, mass)
     if count is None:
         count = beam.n_dof

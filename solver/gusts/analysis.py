@@ -39,7 +39,7 @@ from solver.gusts.turbulence import a_bar
 from solver.inputs.atmosphere import SEA_LEVEL_DENSITY
 from solver.inputs.flight import FlightCondition
 from solver.inputs.gust import GustSettings
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.results.gusts import GustCase, GustLoadCase, GustResult, TurbulenceLoads
 from solver.sizing.gusts import gust_alleviation_factor, gust_mass_ratio, sharp_edged_gust_increment
@@ -63,6 +63,7 @@ def gust_analysis(
     for the gusts of `settings` (`GustResult`). Raises `DynamicInstability` past flutter or
     divergence, `InvalidInput` without mass or weight."""
     started = time.perf_counter()
+    check_lag(wing.in_plane_bending_stiffness, options, "gust loads")
     settings = settings or GustSettings()
     unsteady = (options or SolverOptions()).aerodynamics == "unsteady_lattice"
     model: GustModel | LatticeGustModel

@@ -15,6 +15,9 @@ from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
 
 __all__ = [
+    "LAG_FIELD",
+    "check_lag",
+    "refuse_lag",
     "require_flow_model",
     "MAX_CHORDWISE_PANELS",
     "InitialGuess",
@@ -259,6 +262,36 @@ class SolverOptions:
             raise InvalidInput("aerodynamics", "must be 'lattice', 'strip' or 'unsteady_lattice'")
         if self.structure not in ("linear", "geometrically_exact"):
             raise InvalidInput("structure", "must be 'linear' or 'geometrically_exact'")
+
+
+LAG_FIELD = "wing.in_plane_bending_stiffness"
+
+
+def refuse_lag(what: str) -> None:
+    """Refuse a wing with lag bending (`solver.model.lag_beam`) for `what` (a phrase naming
+    the operation or the part of it), naming `wing.in_plane_bending_stiffness`: lag is
+    statics-only for now."""
+    raise InvalidInput(
+        LAG_FIELD,
+        f"lag (in-plane) bending is statics-only for now (/solve and /sweep): {what} does not "
+        "take it yet; leave the field out (the wing rigid in its plane)",
+    )
+
+
+def check_lag(in_plane_bending_stiffness: object, options: SolverOptions | None, what: str) -> None:
+    """A wing's in-plane stiffness refused where it cannot act: under the linear beam (it
+    needs options.structure = geometrically_exact), and for `what` (an operation that does not
+    take lag yet; "" for one that does), naming the field."""
+    if in_plane_bending_stiffness is None:
+        return
+    if (options or SolverOptions()).structure != "geometrically_exact":
+        raise InvalidInput(
+            LAG_FIELD,
+            "needs options.structure = geometrically_exact (the linear beam is rigid in the "
+            "wing's plane)",
+        )
+    if what:
+        refuse_lag(what)
 
 
 def require_flow_model(aerodynamics: str) -> None:

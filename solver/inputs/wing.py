@@ -276,6 +276,21 @@ class Wing:
         compiled=True,
         kw_only=True,
     )
+    in_plane_bending_stiffness: np.ndarray | None = parameter(
+        "N m^2",
+        "in-plane (lag, chordwise) bending stiffness EI_lag of the section about its own normal "
+        "(the section's stiffer axis for a wing; null: rigid in its plane, the planar beam). "
+        "Needs options.structure = geometrically_exact, which then adds the lag displacement "
+        "and rotation to its unknowns (statics only for now: the other operations refuse it). "
+        "Compiled in the lag layouts only (solver.model.layout.LAG_SLOTS)",
+        ge=1e-3,
+        le=1e12,
+        why="a foam model wing to a steel bridge, as EI",
+        per_station=True,
+        default=None,
+        example=5e5,
+        kw_only=True,
+    )
     airfoil: tuple[CamberLine, ...] = parameter(
         "",
         "the sections' camber lines: one for every station or one per station (N), each a "

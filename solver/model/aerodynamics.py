@@ -127,8 +127,12 @@ def panel_loads(
 
 
 def wing_lattice(layout: Layout, z: ca.SX, wing: Any) -> Lattice:
-    """The lattice at the beam's unknowns z = [u; u'; phi] (3N,)."""
+    """The lattice at the beam's unknowns z = [u; u'; phi] (3N,), with lag [u; beta; phi; v;
+    psi] (5N,)."""
     n = layout.n
+    if layout.lag:
+        lag = (z[3 * n : 4 * n], z[4 * n : 5 * n])
+        return lattice(z[:n], z[n : 2 * n], z[2 * n : 3 * n], wing, layout.chordwise, True, lag)
     return lattice(z[:n], z[n : 2 * n], z[2 * n :], wing, layout.chordwise, exact=layout.exact)
 
 
@@ -141,7 +145,7 @@ def lattice_function(layout: Layout, flow: bool = False) -> ca.Function:
     parameters) adds the four point sets' derivatives along its control direction (3M, 1), and
     the stations' leading edges' and quarter-chord points' derivatives w.r.t. z."""
     p, wing = parameter_symbols(layout, flow)
-    z = ca.SX.sym("z", 3 * layout.n)
+    z = ca.SX.sym("z", layout.n_structure)
     lat = wing_lattice(layout, z, wing)
     outputs = [lat.left, lat.right, lat.collocation, lat.center]
     jacobians = [ca.jacobian(ca.vec(out), z) for out in outputs]
@@ -169,7 +173,7 @@ def aero_function(layout: Layout, with_jacobians: bool, flow: bool = False) -> c
     """
     m = layout.n_panels
     p, wing = parameter_symbols(layout, flow)
-    z = ca.SX.sym("z", 3 * layout.n)
+    z = ca.SX.sym("z", layout.n_structure)
     g = ca.SX.sym("g", m)
     induced_tangency = ca.SX.sym("induced_tangency", 3 * m)
     induced_forces = ca.SX.sym("induced_forces", 3 * m)
@@ -208,7 +212,7 @@ def panel_forces_function(layout: Layout, flow: bool = False) -> ca.Function:
     model's (its roll rate's onset), their leading edges (3, N) [m]."""
     m = layout.n_panels
     p, wing = parameter_symbols(layout, flow)
-    z, g = ca.SX.sym("z", 3 * layout.n), ca.SX.sym("g", m)
+    z, g = ca.SX.sym("z", layout.n_structure), ca.SX.sym("g", m)
     induced = ca.SX.sym("induced", 3 * m)
     lat = wing_lattice(layout, z, wing)
     rate = wing.roll_rate if flow else None
@@ -224,6 +228,6 @@ def stations_function(layout: Layout, flow: bool = False) -> ca.Function:
     """(z, p) -> the stations' quarter-chord points and leading edges (3, N) [m] (p the flow
     model's parameters with `flow`)."""
     p, wing = parameter_symbols(layout, flow)
-    z = ca.SX.sym("z", 3 * layout.n)
+    z = ca.SX.sym("z", layout.n_structure)
     lat = wing_lattice(layout, z, wing)
     return ca.Function("stations", [z, p], [lat.quarter_chord, lat.leading_edge])

@@ -36,7 +36,7 @@ def flow_outputs(
     center_z: ca.MX,
 ) -> dict[str, ca.MX]:
     """The flow model's outputs (`solver.model.residual.build_coupled_function`), by name."""
-    layout, m, n = sym.layout, sym.m, sym.layout.n
+    layout, m = sym.layout, sym.m
     heave, deformed = sym.heave, sym.parameters.deformed_axis
     left_c, right_c, collocation_c, center_c, leading_edge_z, quarter_chord_z = flow_lattice
     tangency_c, loads_c, tangency_p, loads_p = flow_aero
@@ -50,14 +50,10 @@ def flow_outputs(
     )
 
     def r0_along(tangency_along: ca.MX) -> ca.MX:
-        return ca.vertcat(ca.MX(3 * n, 1), tangency_along)
+        return ca.vertcat(ca.MX(layout.n_structure, 1), tangency_along)
 
     def r1_along(loads_along: ca.MX) -> ca.MX:
-        return ca.vertcat(
-            ca.MX(3 + layout.n_strips, 1),
-            sym.beam.load_rows(loads_along, heave, deformed),
-            ca.MX(m, 1),
-        )
+        return sym.placed(sym.beam.load_rows(loads_along, heave, deformed))
 
     direction = sym.parameters.direction
     structure_direction = direction[layout.structure]

@@ -50,6 +50,8 @@ __all__ = [
     "axis_force",
     "chordwise_nodes",
     "in_wing_plane",
+    "lag_reference_line",
+    "lag_segment_chords",
     "lattice",
     "normal_force",
     "reference_line",
@@ -167,6 +169,30 @@ def reference_line(beta: Any, h: Any) -> tuple[Any, Any]:
     return np.concatenate([[0.0], np.cumsum(along)]), np.concatenate([[0.0], np.cumsum(normal)])
 
 
+def lag_segment_chords(beta: Any, psi: Any, h: Any) -> tuple[Any, Any, Any]:
+    """(N-1,) the segments' chords along the jig axis e_s, the normal n and e_c = e_s x n [m],
+    of the flap rotations beta (N,) [rad], the lag rotations psi (N,) [rad] and the lengths h
+    (N-1,) [m]: h sinc(db/2) sinc(dp/2) t(b, p), t = cos b (cos p e_s - sin p e_c) + sin b n at
+    the segment's mean rotations b, p, db and dp their differences (`solver.model.lag_beam`;
+    at psi = 0 `segment_chords` and a zero across)."""
+    symbolic = isinstance(beta, ca.SX | ca.MX)
+    cos: Any = ca.cos if symbolic else np.cos
+    sin: Any = ca.sin if symbolic else np.sin
+    flap, lag = (beta[:-1] + beta[1:]) / 2, (psi[:-1] + psi[1:]) / 2
+    length = h * _sinc((beta[1:] - beta[:-1]) / 2) * _sinc((psi[1:] - psi[:-1]) / 2)
+    in_plane = length * cos(flap)
+    return in_plane * cos(lag), length * sin(flap), -in_plane * sin(lag)
+
+
+def lag_reference_line(beta: Any, psi: Any, h: Any) -> tuple[Any, Any, Any]:
+    """(N,) S_i, u_i, v_i [m]: the deformed axis's stations along e_s, n and e_c from the root
+    (a running sum of `lag_segment_chords`)."""
+    parts = lag_segment_chords(beta, psi, h)
+    if isinstance(beta, ca.SX | ca.MX):
+        return tuple(ca.vertcat(0, ca.cumsum(part)) for part in parts)  # type: ignore[return-value]
+    return tuple(np.concatenate([[0.0], np.cumsum(part)]) for part in parts)  # type: ignore[return-value]
+
+
 def _turned(points: ca.SX, cos: ca.SX, sin: ca.SX) -> ca.SX:
     """(3, n) points or directions turned about the x axis: R_x(dihedral) points."""
     y, z = points[1, :], points[2, :]
@@ -239,8 +265,51 @@ def _exact_leading_edges(
     )
 
 
+def _about_normal(x: ca.SX, y: ca.SX, cos_psi: ca.SX, sin_psi: ca.SX) -> tuple[ca.SX, ca.SX]:
+    """The x, y components of vectors turned about the wing's normal (z in its plane) by the
+    lag rotation psi: positive turns y (outboard) toward -x (forward)."""
+    return x * cos_psi - y * sin_psi, x * sin_psi + y * cos_psi
+
+
+def _lag_leading_edges(
+    heave: ca.SX,
+    beta: ca.SX,
+    lag: tuple[ca.SX, ca.SX],
+    wing: Any,
+    ea_offset: ca.SX,
+    cos_t: ca.SX,
+    sin_t: ca.SX,
+) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """The leading edges on the reference line with lag (`solver.model.lag_beam`): the
+    elastic-axis point at S_i e_s + v_i e_c + u_i n (S, v from `lag_reference_line`, u the
+    heave), the chord's offset of `_exact_leading_edges` turned about the normal by psi_i (R =
+    R_n(psi) R_ec(beta) R_es(phi): the lag turn last)."""
+    displacement, psi = lag
+    s = arc_length(wing)
+    along, _, _ = lag_reference_line(beta, psi, s[1:] - s[:-1])
+    cos_sweep, sin_sweep = _cos_sin(wing.sweep)
+    tangent_y, tangent_z = ca.cos(beta) * cos_sweep, ca.sin(beta)
+    norm = ca.sqrt(tangent_y**2 + tangent_z**2)
+    axis_y, axis_z = tangent_y / norm, tangent_z / norm
+    offset_x, offset_y = _about_normal(
+        -ea_offset * cos_t, -ea_offset * axis_z * sin_t, ca.cos(psi), ca.sin(psi)
+    )
+    # e_c = (cos(sweep), -sin(sweep), 0) in the wing's plane.
+    return (
+        along * sin_sweep + displacement * cos_sweep + offset_x,
+        along * cos_sweep - displacement * sin_sweep + offset_y,
+        heave + ea_offset * axis_y * sin_t,
+    )
+
+
 def lattice(
-    heave: ca.SX, slope: ca.SX, phi: ca.SX, wing: Any, k: int, exact: bool = False
+    heave: ca.SX,
+    slope: ca.SX,
+    phi: ca.SX,
+    wing: Any,
+    k: int,
+    exact: bool = False,
+    lag: tuple[ca.SX, ca.SX] | None = None,
 ) -> Lattice:
     """The deformed lattice of the compiled model's parameters `wing` (`Layout.unpack`).
 
@@ -255,6 +324,10 @@ def lattice(
             the bending rotation beta [rad], the elastic-axis points sit on its reference line
             (foreshortened: y_i = S_i cos(sweep)), and each section's chord turns by its twist
             about the deformed axis's direction in the y-z plane instead of the global y axis.
+        lag: with lag bending (`solver.model.lag_beam`, the exact beam's), (v, psi) (N,) each,
+            the lag displacement [m] along e_c and rotation [rad] about the normal: the
+            elastic-axis points move by v e_c and each section, its chord and up axes, turns
+            about the normal by psi.
     """
     y, chord, elastic_axis = wing.y, wing.chord, wing.elastic_axis
     n = y.shape[0]
@@ -262,7 +335,9 @@ def lattice(
     twist = streamwise_twist(phi, slope, wing.jig_twist, wing.sweep) * DEG
     cos_t, sin_t = ca.cos(twist), ca.sin(twist)
     ea_offset = chord * elastic_axis
-    if exact:
+    if lag is not None:
+        le_x, le_y, le_z = _lag_leading_edges(heave, slope, lag, wing, ea_offset, cos_t, sin_t)
+    elif exact:
         le_x, le_y, le_z = _exact_leading_edges(heave, slope, wing, ea_offset, cos_t, sin_t)
     else:
         le_x = y * ca.tan(wing.sweep * DEG) - ea_offset * cos_t
@@ -273,6 +348,14 @@ def lattice(
     # axis: (x cross span axis) turned likewise, times the scale.
     chord_axis = ca.vertcat((cos_t).T, (axis_z * sin_t).T, (-axis_y * sin_t).T)
     up_axis = ca.vertcat((scale * sin_t).T, (-scale * axis_z * cos_t).T, (scale * axis_y * cos_t).T)
+    if lag is not None:  # the section turned about the normal by its lag rotation
+        cos_psi, sin_psi = ca.cos(lag[1]).T, ca.sin(lag[1]).T
+        chord_axis = ca.vertcat(
+            *_about_normal(chord_axis[0, :], chord_axis[1, :], cos_psi, sin_psi), chord_axis[2, :]
+        )
+        up_axis = ca.vertcat(
+            *_about_normal(up_axis[0, :], up_axis[1, :], cos_psi, sin_psi), up_axis[2, :]
+        )
     le = ca.vertcat(le_x.T, le_y.T, le_z.T)
     chord_row = chord.T
     nodes = [

@@ -2,14 +2,23 @@
 
 N structural stations, k chordwise panels per strip, M = (N - 1) k panels on the right half.
 
-Unknowns x (3N + M), in this order:
+Unknowns x (3N + M, or 5N + M with lag), in this order:
     u (N) [m]          heave at stations
     du (N) [-]         slope du/ds along the elastic axis
     phi (N) [deg]      twist about the elastic axis
+    v (N) [m]          with lag: the lag displacement along e_c = e_s x n (in the wing's plane)
+    psi (N) [rad]      with lag: the lag rotation about the wing's normal n
     g (M) [m]          circulation per unit airspeed of each right-half panel, Gamma / V
-Equations (3N + M), in this order:
+Equations (as many), in this order:
     root clamps (3), heave kinematics (N - 1), bending (N - 1), torsion (N - 1),
+    with lag: lag clamps (2), lag kinematics (N - 1), lag bending (N - 1);
     flow tangency (M)
+
+The beam's size is `Layout.n_structure` (3N, or 5N with lag): its unknowns `structure` and its
+rows `structure_rows` both. Lag (`Layout.lag`, `solver.model.lag_beam`) exists only on the
+geometrically exact beam of a wing with `in_plane_bending_stiffness`; its slot
+(`LAG_SLOTS`) sits in the lag layouts' parameter vectors only, after the wing's, so every other
+layout's table, and each of its libraries' numbers, is today's to the bit.
 
 Parameters p: named slots, one table (`Slot`, `MODEL_SLOTS`, `FLOW_SLOTS`). The wing's slots
 are its fields declared `compiled` (`solver.fields.parameter`, `solver.inputs.wing.Wing`), in
@@ -47,6 +56,7 @@ __all__ = [
     "AERODYNAMICS",
     "STRUCTURES",
     "FLOW_SLOTS",
+    "LAG_SLOTS",
     "MODEL_OWN",
     "MODEL_SLOTS",
     "WING_SLOTS",
@@ -116,6 +126,15 @@ MODEL_OWN = (
     ),
 )
 MODEL_SLOTS = WING_SLOTS + MODEL_OWN
+
+
+def _lag_slots() -> tuple[Slot, ...]:
+    """The wing's in-plane stiffness, a slot of the lag layouts only (`Layout.lag`)."""
+    spec = specs(Wing)["in_plane_bending_stiffness"]
+    return (Slot("in_plane_bending_stiffness", "station", spec.unit, spec.description),)
+
+
+LAG_SLOTS = _lag_slots()
 FLOW_SLOTS = (
     Slot(
         "image",
@@ -179,6 +198,13 @@ class Layout:
     chordwise: int = 1
     aerodynamics: Aerodynamics = "lattice"
     beam: Structure = "linear"
+    # Lag (in-plane) bending: two more unknowns and row sets per station
+    # (`solver.model.lag_beam`); the exact beam's only.
+    lag: bool = False
+
+    def __post_init__(self) -> None:
+        if self.lag and self.beam != "geometrically_exact":
+            raise ValueError("lag bending is the geometrically exact beam's")
 
     @property
     def exact(self) -> bool:
@@ -196,15 +222,21 @@ class Layout:
         return self.n - 1
 
     @property
+    def n_structure(self) -> int:
+        """The beam's unknowns and rows: 3N (u, beta, phi), 5N with lag (and v, psi)."""
+        return (5 if self.lag else 3) * self.n
+
+    @property
     def n_unknowns(self) -> int:
-        return 3 * self.n + self.n_panels
+        return self.n_structure + self.n_panels
 
     @property
     def tag(self) -> str:
         """The mesh's name in the compiled functions' names: N_k, and _strip for strip theory."""
         strip = "_strip" if self.aerodynamics == "strip" else ""
         exact = "_exact" if self.exact else ""
-        return f"{self.n}_{self.chordwise}{strip}{exact}"
+        lag = "_lag" if self.lag else ""
+        return f"{self.n}_{self.chordwise}{strip}{exact}{lag}"
 
     # Unknowns
     @property
@@ -221,13 +253,23 @@ class Layout:
         return slice(2 * self.n, 3 * self.n)
 
     @property
+    def lag_displacement(self) -> slice:
+        """With lag: v [m] along e_c (`solver.model.lag_beam`); empty without."""
+        return slice(3 * self.n, 4 * self.n) if self.lag else slice(3 * self.n, 3 * self.n)
+
+    @property
+    def lag_rotation(self) -> slice:
+        """With lag: psi [rad] about the wing's normal; empty without."""
+        return slice(4 * self.n, 5 * self.n) if self.lag else slice(3 * self.n, 3 * self.n)
+
+    @property
     def circulation(self) -> slice:
-        return slice(3 * self.n, 3 * self.n + self.n_panels)
+        return slice(self.n_structure, self.n_structure + self.n_panels)
 
     @property
     def structure(self) -> slice:
-        """Unknowns of the beam: heave, slope and twist."""
-        return slice(0, 3 * self.n)
+        """Unknowns of the beam: heave, slope and twist (and with lag v, psi)."""
+        return slice(0, self.n_structure)
 
     # Equations
     @property
@@ -239,20 +281,37 @@ class Layout:
         return slice(3 + 2 * self.n_strips, 3 + 3 * self.n_strips)
 
     @property
+    def lag_kinematics_rows(self) -> slice:
+        """With lag: v_{i+1} - v_i - (r_{i+1} - r_i) . e_c (after the lag clamps); empty
+        without."""
+        start = 3 * self.n + 2
+        return slice(start, start + self.n_strips) if self.lag else slice(3 * self.n, 3 * self.n)
+
+    @property
+    def lag_bending_rows(self) -> slice:
+        """With lag: psi_{i+1} - psi_i - h_i/2 (psi'_i + psi'_{i+1}); empty without."""
+        start = 3 * self.n + 2 + self.n_strips
+        return slice(start, start + self.n_strips) if self.lag else slice(3 * self.n, 3 * self.n)
+
+    @property
     def structure_rows(self) -> slice:
-        """Equations of the beam: clamps, kinematics, bending, torsion."""
-        return slice(0, 3 * self.n)
+        """Equations of the beam: clamps, kinematics, bending, torsion (and the lag's)."""
+        return slice(0, self.n_structure)
 
     @property
     def tangency_rows(self) -> slice:
-        return slice(3 * self.n, 3 * self.n + self.n_panels)
+        return slice(self.n_structure, self.n_structure + self.n_panels)
 
     @cached_property
     def load_rows(self) -> np.ndarray:
-        """Equations in which the aerodynamic loads appear (J1's only non-zero rows); read-only,
-        built once per layout (every stability verdict reads it)."""
+        """Equations in which the aerodynamic loads appear (J1's only non-zero rows): bending
+        and torsion, and with lag the lag bending rows; read-only, built once per layout (every
+        stability verdict reads it)."""
         # The torsion rows follow the bending rows.
         load_rows = np.arange(self.bending_rows.start, self.torsion_rows.stop)
+        if self.lag:
+            rows = self.lag_bending_rows
+            load_rows = np.concatenate([load_rows, np.arange(rows.start, rows.stop)])
         load_rows.setflags(write=False)
         return load_rows
 
@@ -270,7 +329,7 @@ class Layout:
     def _places(self) -> dict[str, slice]:
         """Every slot's place, the model's then the flow model's."""
         places, start = {}, 0
-        for slot in MODEL_SLOTS + FLOW_SLOTS:
+        for slot in self.table(flow=True):
             places[slot.name] = slice(start, start + self.size(slot))
             start += self.size(slot)
         return places
@@ -291,22 +350,27 @@ class Layout:
     @property
     def n_parameters(self) -> int:
         """The length of the model's parameter vector."""
-        return self._places[MODEL_SLOTS[-1].name].stop
+        return self._places[MODEL_OWN[-1].name].stop
 
     @property
     def n_flow_parameters(self) -> int:
         """How many parameters the flow model adds after the model's."""
         return self._places[FLOW_SLOTS[-1].name].stop - self.n_parameters
 
-    @staticmethod
-    def table(flow: bool = False) -> tuple[Slot, ...]:
-        """The slots of the model's parameter vector (with `flow`: the flow model's), in order."""
-        return MODEL_SLOTS + FLOW_SLOTS if flow else MODEL_SLOTS
+    def table(self, flow: bool = False) -> tuple[Slot, ...]:
+        """The slots of the model's parameter vector (with `flow`: the flow model's), in order:
+        the wing's, with lag its in-plane stiffness (`LAG_SLOTS`), the model's own."""
+        model = WING_SLOTS + (LAG_SLOTS if self.lag else ()) + MODEL_OWN
+        return model + FLOW_SLOTS if flow else model
 
     @staticmethod
     def wing_values(wing: Wing) -> dict[str, Any]:
-        """The wing's compiled fields by name, what `pack` takes of a wing."""
-        return {slot.name: getattr(wing, slot.name) for slot in WING_SLOTS}
+        """The wing's compiled fields by name, what `pack` takes of a wing (with its in-plane
+        stiffness when it has one: a lag layout's slot)."""
+        values = {slot.name: getattr(wing, slot.name) for slot in WING_SLOTS}
+        if wing.in_plane_bending_stiffness is not None:
+            values["in_plane_bending_stiffness"] = wing.in_plane_bending_stiffness
+        return values
 
     def pack(self, values: Mapping[str, Any], flow: bool = False) -> np.ndarray:
         """(n_parameters,), or with `flow` the flow model's (n_parameters + n_flow_parameters,),

@@ -43,6 +43,7 @@ import solver.model.flow_vlm as flow_vlm_module
 import solver.model.geometry as geometry_module
 import solver.model.horseshoe as horseshoe_module
 import solver.model.induced as induced_module
+import solver.model.lag_beam as lag_beam_module
 import solver.model.layout as layout_module
 import solver.model.strip as strip_module
 import solver.model.symbols as symbols_module
@@ -111,11 +112,16 @@ MODEL_VERSION = _graph_source_digest(
     aerodynamics_module,
     beam_module,
     exact_beam_module,
+    lag_beam_module,
     strip_module,
     symbols_module,
     induced_module,
     flow_module,
-    table=tuple((slot.name, slot.size) for slot in Layout.table(flow=True)),
+    table=tuple(
+        (slot.name, slot.size)
+        for layout in (Layout(3), Layout(3, beam="geometrically_exact", lag=True))
+        for slot in layout.table(flow=True)
+    ),
 )
 
 
@@ -191,12 +197,8 @@ def build_coupled_function(layout: Layout, flow: bool = False) -> ca.Function:
     heave_columns = ca.DM(np.eye(n, nx))
     j0_structure = ca.jacobian(structure, sym.x)
     j1_loads = sym.beam.load_rows_jacobian(loads, loads_x, sym.heave, deformed, heave_columns)
-    r0_alpha = ca.vertcat(ca.MX(3 * n, 1), tangency_a)
-    r1_alpha = ca.vertcat(
-        ca.MX(3 + layout.n_strips, 1),
-        sym.beam.load_rows(loads_a, sym.heave, deformed),
-        ca.MX(m, 1),
-    )
+    r0_alpha = ca.vertcat(ca.MX(layout.n_structure, 1), tangency_a)
+    r1_alpha = sym.placed(sym.beam.load_rows(loads_a, sym.heave, deformed))
     lift = sym.lift(loads)
     lift_x = sym.lift(loads_x)
     alpha = sym.parameters.alpha * DEG

@@ -47,7 +47,7 @@ def strip_induced_function(layout: Layout, with_jacobian: bool) -> ca.Function:
     derivative n_p . d(v_p)/dx (M, 3N + M)."""
     m, k = layout.n_panels, layout.chordwise
     p, wing = parameter_symbols(layout)
-    z = ca.SX.sym("z", 3 * layout.n)
+    z = ca.SX.sym("z", layout.n_structure)
     g = ca.SX.sym("g", m)
     lat = wing_lattice(layout, z, wing)
     columns = []

@@ -16,6 +16,7 @@ from solver.model.beam import Beam, structure_rows
 from solver.model.exact_beam import ExactBeam, exact_structure_rows
 from solver.model.flow_vlm import flow_normal_source_columns, flow_source_columns
 from solver.model.geometry import DEG
+from solver.model.lag_beam import LagBeam, lag_structure_rows
 from solver.model.layout import Layout
 from solver.model.vlm import normal_source_columns, source_columns
 
@@ -37,9 +38,13 @@ class Symbols:
         self.z = self.x[layout.structure]
         self.heave = self.x[layout.heave]
         self.circulation = self.x[layout.circulation]
-        self.beam = (
-            ExactBeam(layout, self.p, self.z) if layout.exact else Beam(layout, self.parameters)
-        )
+        self.beam: Beam
+        if layout.lag:
+            self.beam = LagBeam(layout, self.p, self.z)
+        elif layout.exact:
+            self.beam = ExactBeam(layout, self.p, self.z)
+        else:
+            self.beam = Beam(layout, self.parameters)
         # The horseshoe of panel p induces nothing of its bound leg at its own force point.
         self.all_bound_legs = ca.DM.ones(self.m, self.m)
         self.no_self_bound_leg = ca.DM.ones(self.m, self.m) - ca.DM.eye(self.m)
@@ -68,18 +73,32 @@ class Symbols:
         return columns(field, weights, left, right, g_row, *image)
 
     def structure_rows(self) -> ca.MX:
-        """The beam's load-free rows (3N,): the linear beam's, or the exact beam's."""
+        """The beam's load-free rows (n_structure,): the linear beam's, the exact beam's, or
+        with lag the lag beam's."""
+        if self.layout.lag:
+            return lag_structure_rows(self.layout, self.x, self.beam.h)
         rows = exact_structure_rows if self.layout.exact else structure_rows
         return rows(self.layout, self.x, self.beam.h)
 
+    def placed(self, load_rows: ca.MX) -> ca.MX:
+        """(n_unknowns, c) the beam's load rows (`Beam.load_rows`) at their places among
+        zeros (`Layout.load_rows`): bending and torsion, and with lag the lag bending rows."""
+        layout, n_strips, c = self.layout, self.layout.n_strips, load_rows.size2()
+        if not layout.lag:
+            return ca.vertcat(ca.MX(3 + n_strips, c), load_rows, ca.MX(self.m, c))
+        return ca.vertcat(
+            ca.MX(3 + n_strips, c),
+            load_rows[: 2 * n_strips, :],
+            ca.MX(2 + n_strips, c),
+            load_rows[2 * n_strips :, :],
+            ca.MX(self.m, c),
+        )
+
     def residual(self, tangency: ca.MX, loads: ca.MX) -> tuple[ca.MX, ca.MX]:
         """r0 and r1 from the aerodynamic outputs."""
-        n_strips = self.layout.n_strips
         r0 = ca.vertcat(self.structure_rows(), tangency)
-        r1 = ca.vertcat(
-            ca.MX(3 + n_strips, 1),
+        r1 = self.placed(
             self.beam.load_rows(loads, self.heave, self.parameters.deformed_axis),
-            ca.MX(self.m, 1),
         )
         return r0, r1
 

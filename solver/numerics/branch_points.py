@@ -190,6 +190,8 @@ def branch_scales(layout: Layout, semispan: float, mean_chord: float, q_scale: f
     scale[layout.heave] = semispan * rms_stations
     scale[layout.slope] = rms_stations
     scale[layout.twist] = math.degrees(1.0) * rms_stations
+    scale[layout.lag_displacement] = semispan * rms_stations  # with lag (empty without)
+    scale[layout.lag_rotation] = rms_stations
     scale[layout.circulation] = mean_chord * rms_panels
     scale[-1] = q_scale
     return scale

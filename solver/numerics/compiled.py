@@ -153,6 +153,7 @@ def _library_path(layout: Layout, flow: bool = False) -> Path:
     flags = "".join(_flags(_compiler())).replace("-", "_")
     strip = "-strip" if layout.aerodynamics == "strip" else ""  # the lattice's names unchanged
     exact = "-exact" if layout.exact else ""
+    exact += "-lag" if layout.lag else ""
     mesh = f"n{layout.n}-k{layout.chordwise}{strip}{exact}"
     model = f"model{MODEL_VERSION}" + ("-flow" if flow else "")
     tag = f"{mesh}-{model}-casadi{casadi_version}-{platform.machine()}{flags}"
@@ -281,7 +282,7 @@ class CompiledModel:
         j0[layout.structure_rows] = structure
         j0[layout.tangency_rows] = tangency
         j1 = np.zeros((n, n), order="F")
-        j1[layout.bending_rows.start : layout.torsion_rows.stop] = loads
+        j1[layout.load_rows] = loads
         return Evaluation(r0.ravel().copy(), r1.ravel().copy(), j0, j1)
 
     def evaluate_with_alpha(self, x: np.ndarray, p: np.ndarray) -> tuple[Evaluation, AlphaTerms]:

@@ -13,7 +13,7 @@ from solver.controls.roll import roll
 from solver.errors import InvalidInput
 from solver.fields import parameter
 from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
-from solver.inputs.options import SolverOptions, require_flow_model
+from solver.inputs.options import SolverOptions, check_lag, require_flow_model
 from solver.inputs.wing import Wing, require_control_surfaces
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed, identity
 from solver.results.controls import ControlSweep, RollResponse
@@ -66,6 +66,7 @@ class RollInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "roll (/roll)")
         if self.flight.velocity is None:
             raise InvalidInput("flight.velocity", "is required: the airspeed to roll at")
         require_control_surfaces(self.wing, "the roll response is the ailerons'")
@@ -136,6 +137,9 @@ class ControlsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(
+            self.wing.in_plane_bending_stiffness, self.options, "control effectiveness (/controls)"
+        )
         require_control_surfaces(self.wing, "effectiveness is a control surface's")
         require_flow_model(self.modelled.aerodynamics)
         check_airspeeds(self.velocities)

@@ -9,7 +9,7 @@ from functools import cached_property
 from solver.errors import InvalidInput
 from solver.fields import parameter
 from solver.inputs.design import DesignProblem
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.operations.common import check_meshed, identity
 from solver.optimization.optimize import optimize
@@ -33,6 +33,7 @@ class OptimizeInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "the optimiser (/optimize)")
         if self.problem.size_spar and self.wing.spar is None:
             raise InvalidInput("design.wall_thickness", "the wing has no spar to size")
 

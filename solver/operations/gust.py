@@ -12,7 +12,7 @@ from solver.fields import parameter
 from solver.gusts.analysis import gust_analysis
 from solver.inputs.flight import FlightCondition
 from solver.inputs.gust import GustSettings
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing, require_mass
 from solver.operations.common import check_meshed
 from solver.results.gusts import GustResult
@@ -49,6 +49,7 @@ class GustInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "gust loads (/gust)")
         require_mass(self.wing, "gust loads need it")
         if self.flight.weight is None:
             raise InvalidInput("flight.weight", "a gust analysis needs the aircraft's weight")

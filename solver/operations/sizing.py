@@ -24,7 +24,7 @@ from solver.inputs.envelope import FlightEnvelope
 from solver.inputs.flight import FlightCondition
 from solver.inputs.gust import GustCondition
 from solver.inputs.load_case import FlightCase
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.operations.common import check_meshed
 from solver.results.quantities import Progress
@@ -204,6 +204,7 @@ class LoadsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "the sizing loads (/loads)")
         if not self.cases and self.envelope is None and not self.gusts:
             raise InvalidInput("cases", "give load cases, an envelope, or both")
         if self.gusts and self.wing.mass is None:

@@ -10,7 +10,7 @@ from solver import fields
 from solver.errors import InvalidInput
 from solver.fields import parameter
 from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
-from solver.inputs.options import InitialGuess, SolverOptions
+from solver.inputs.options import InitialGuess, SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed, identity
 from solver.results.equilibrium import Equilibrium
@@ -43,6 +43,7 @@ class SolveInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
         if self.flight.velocity is None:
             raise InvalidInput("flight.velocity", "is required: the airspeed to solve at")
         if self.initial_guess is not None and self.flight.trimmed:
@@ -96,6 +97,7 @@ class SweepInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
         check_airspeeds(self.velocities)
         check_over_airspeeds(self.flight.alpha, self.flight.load_factor, self.wing.mass is not None)
 

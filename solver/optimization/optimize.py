@@ -42,7 +42,7 @@ from solver.errors import (
 )
 from solver.inputs.design import DesignProblem
 from solver.inputs.flight import FlightCondition
-from solver.inputs.options import SolverOptions
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
 from solver.optimization.design_space import DesignPoint, DesignSpace
 from solver.optimization.multipoint import optimize_cases
@@ -154,6 +154,7 @@ def optimize(
     could not be met, `InvalidInput` for a problem the wing cannot pose (sizing without a spar).
     """
     options = options or SolverOptions()
+    check_lag(wing.in_plane_bending_stiffness, options, "the optimiser")
     if problem.size_spar and wing.spar is None:
         raise InvalidInput("design.wall_thickness", "the wing has no spar to size")
     tolerance = 1e-10

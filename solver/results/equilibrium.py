@@ -101,6 +101,28 @@ class Stations:
         "beam's small-angle degrees(slope). Static answers (null in a roll answer)",
         default=None,
     )
+    lag: np.ndarray | None = quantity(
+        "m",
+        "with lag bending (wing.in_plane_bending_stiffness, the exact beam's): the elastic "
+        "axis's displacement in the wing's plane normal to the jig axis, along e_c = e_s x n "
+        "(aft at zero sweep; a tip swept back by drag has lag > 0); null without",
+        default=None,
+    )
+    lag_rotation: np.ndarray | None = quantity(
+        "deg",
+        "with lag bending: the section's lag rotation psi about the wing's normal, positive "
+        "turning the axis forward (a tip swept back by drag has lag_rotation < 0); null without",
+        default=None,
+    )
+    lag_bending_moment: np.ndarray | None = quantity(
+        "N m",
+        "with lag bending: the moment about the bent axis's lag axis n'' (the wing's normal "
+        "turned by the flap rotation) of every load outboard, about the deformed station; "
+        "positive turns the axis forward. bending_moment is then the moment about the flap "
+        "axis e_c' (e_c turned by the lag rotation), torque about the deformed tangent; null "
+        "without",
+        default=None,
+    )
 
 
 @dataclass(frozen=True, eq=False)

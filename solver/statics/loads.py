@@ -25,6 +25,7 @@ from solver.model.geometry import (
     normal_force,
     streamwise_twist,
 )
+from solver.model.lag_beam import lag_axis_points, lag_internal_loads
 from solver.results.equilibrium import Panels, Stations, Totals
 from solver.statics.inertia import InertialLoads, deformed_loads
 from solver.statics.system import CoupledSystem
@@ -164,7 +165,20 @@ def equilibrium_loads(
     torque = outboard_sum(loads.per_strip(loads.torque, k))
     points = axis_points(wing, heave, slope, layout.exact)
     rotation = np.degrees(slope)  # the exact beam's beta, the linear beam's small angle
-    if layout.exact:  # exact statics about the deformed stations; slope: du/ds = sin(beta)
+    lag: dict[str, np.ndarray] = {}
+    if layout.lag:  # 3D statics about the deformed stations (`solver.model.lag_beam`)
+        psi = x[layout.lag_rotation].copy()
+        points = lag_axis_points(wing, heave, (slope, psi))
+        bending_moment, torque, lag_moment = lag_internal_loads(
+            wing, force, center, (slope, psi), k
+        )
+        lag = {
+            "lag": x[layout.lag_displacement].copy(),
+            "lag_rotation": np.degrees(psi),
+            "lag_bending_moment": lag_moment,
+        }
+        slope = np.sin(slope)
+    elif layout.exact:  # exact statics about the deformed stations; slope: du/ds = sin(beta)
         bending_moment, torque = exact_internal_loads(wing, force, center, slope, k)
         slope = np.sin(slope)
     elif system.deformed_axis:
@@ -187,6 +201,7 @@ def equilibrium_loads(
         axis_y=points[1],
         axis_z=points[2],
         bending_rotation=rotation,
+        **lag,
     )
     panels = Panels(
         y=loads.per_strip(in_wing_plane(center, wing)[1], k) / k,

@@ -82,6 +82,8 @@ def solve(
                 n = wing.n_stations
                 slope = initial_guess[n : 2 * n]
                 initial_guess[n : 2 * n] = np.arcsin(np.clip(slope, -1.0, 1.0))
+                if wing.in_plane_bending_stiffness is not None:  # lag: v, psi start at zero
+                    initial_guess = np.insert(initial_guess, 3 * n, np.zeros(2 * n))
     if flight.alpha is None:
         if initial_guess is not None:
             raise InvalidInput(

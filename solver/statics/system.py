@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
-from solver.inputs.options import SolverOptions, require_flow_model
+from solver.inputs.options import SolverOptions, check_lag, refuse_lag, require_flow_model
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
 from solver.model.layout import Aerodynamics, Layout, Structure
@@ -112,6 +112,8 @@ class CoupledSystem:
         `dynamic_pressure` [Pa]; unchanged without `wing.mass`."""
         if load_factor is None or self.wing.mass is None:
             return self
+        if self.layout.lag:
+            refuse_lag("the wing's weight under a load factor (wing.mass with a flight's weight)")
         return dataclasses.replace(self, load_per_q=load_factor / dynamic_pressure)
 
     @property
@@ -180,7 +182,12 @@ class CoupledSystem:
 
     @cached_property
     def layout(self) -> Layout:
-        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics, self.structure)
+        """The mesh, with lag when the exact beam's wing has an in-plane stiffness
+        (`solver.model.lag_beam`)."""
+        stiffness = self.wing.in_plane_bending_stiffness
+        check_lag(stiffness, SolverOptions(structure=self.structure), "")
+        lag = self.structure == "geometrically_exact" and stiffness is not None
+        return Layout(self.wing.n_stations, self.chordwise, self.aerodynamics, self.structure, lag)
 
     @cached_property
     def model(self) -> CompiledModel:
@@ -194,6 +201,8 @@ class CoupledSystem:
         """The mesh's flow model (`solver.numerics.compiled`), whatever the flow: the
         lattice's (control derivatives, antisymmetric flow, roll); strip theory has none."""
         require_flow_model(self.aerodynamics)
+        if self.layout.lag:
+            refuse_lag("control surfaces' derivatives and roll (the flow model)")
         return model_for(self.layout, flow=True)
 
     @cached_property
