@@ -33,6 +33,18 @@ and the exact coupled bending-torsion frequencies).
 
 The same K is what makes a flutter solution's zero-frequency root the static divergence: at
 zero frequency the equations are the static model's, K w = q Q w (`solver.flutter`).
+
+In-plane (lag) bending: with an in-plane bending stiffness EI_lag (the geometrically exact
+beam's, `docs/design/lag_bending.md`) the beam also bends in the wing's plane, and w gains the
+lag displacements v_1 .. v_{N-1} [m] (along e_c = e_s x n, aft at zero sweep): n = 3 (N - 1),
+the strip loads gain an in-plane force F_c per strip at its midpoint, the model's unknowns
+z = (u, u', phi [deg], v, psi [rad]) (5N) and its rows the lag clamps, the lag kinematics
+v_{i+1} - v_i + h_i (psi_i + psi_{i+1}) / 2 = 0 (straight) and the lag bending rows
+psi_{i+1} - psi_i = h_i (M_l,i/EI_lag,i + M_l,i+1/EI_lag,i+1) / 2, M_l the in-plane moment
+about the normal n (an aft force bends the axis aft: psi < 0, v > 0). The strips' mass moves
+with v as with u; a centre of gravity on the chord line couples v with nothing. About the jig
+the lag modes are the in-plane cantilever's, uncoupled; about a bent state the exact beam's
+tangent rows couple them.
 """
 
 from __future__ import annotations
@@ -46,7 +58,6 @@ import scipy.linalg
 
 from solver.errors import ConvergenceError, InvalidInput
 from solver.inputs.mass import MassModel, section_inertia
-from solver.inputs.options import check_lag
 from solver.inputs.wing import Wing
 from solver.model.beam import coupled_trapezoid, section_compliance
 from solver.model.geometry import DEG, in_wing_plane
@@ -77,13 +88,17 @@ class Structure:
     """The cantilever of one wing with its mass, as matrices on the degrees of freedom w.
 
     wing: the wing; arc: (N,) [m] stations' distance from the root along the EA;
-    stiffness: K (n, n), n = 2 (N - 1); mass: M (n, n) (module docstring);
+    stiffness: K (n, n), n = 2 (N - 1), 3 (N - 1) with lag; mass: M (n, n) (module docstring);
     kinetic_mass: (n, n) symmetric, w' . kinetic_mass w' / 2 is the kinetic energy [J];
-    states: Z (3N, n), the model's structural unknowns z = (u [m], u' [-], phi [deg]) of w;
+    states: Z (3N, n), the model's structural unknowns z = (u [m], u' [-], phi [deg]) of w
+    ((5N, n) with lag: v [m], psi [rad] after them);
     rows_to_strip_loads: (n, n), the equivalent strip loads of load rows (as the residual's
     bending and torsion rows: dimensionless and in degrees), `strip_loads_of`;
     couple_to_strip_loads: (n, N - 1), the equivalent strip loads of a bending couple [N m]
-    about the axis normal to the EA on each strip (a streamwise moment on a swept wing has one).
+    about the axis normal to the EA on each strip (a streamwise moment on a swept wing has one);
+    lag: whether the beam bends in the wing's plane (w ends with v); lag_couple_to_strip_loads:
+    (n, N - 1) with lag, the equivalent strip loads of an in-plane couple [N m] about the normal
+    n on each strip (None without lag).
     """
 
     wing: Wing
@@ -94,6 +109,8 @@ class Structure:
     states: np.ndarray
     rows_to_strip_loads: np.ndarray
     couple_to_strip_loads: np.ndarray
+    lag: bool = False
+    lag_couple_to_strip_loads: np.ndarray | None = None
 
     @property
     def n_strips(self) -> int:
@@ -101,7 +118,7 @@ class Structure:
 
     @property
     def n_dof(self) -> int:
-        return 2 * self.n_strips
+        return (3 if self.lag else 2) * self.n_strips
 
     def strip_loads_of(self, load_rows: np.ndarray) -> np.ndarray:
         """(n, c) equivalent strip loads (F_j [N], tau_j [N m]) of load rows (2(N-1), c) in the
@@ -116,7 +133,7 @@ class Structure:
         z = self.states
         sweep = self.wing.sweep * DEG
         heave = z[:n]
-        pitch = math.cos(sweep) * DEG * z[2 * n :] - math.sin(sweep) * z[n : 2 * n]
+        pitch = math.cos(sweep) * DEG * z[2 * n : 3 * n] - math.sin(sweep) * z[n : 2 * n]
         return heave, pitch
 
     def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
@@ -139,17 +156,24 @@ class Structure:
         `strips` (P,) holds, taken as the static model takes its panels'
         (`solver.model.residual`): the normal force bends the beam about the elastic axis from
         where it acts (a force at the strip's midpoint and a bending couple), the moment about
-        the undeformed elastic axis twists it."""
+        the undeformed elastic axis twists it; with lag, the in-plane force across the axis
+        (along e_c) bends it in the wing's plane the same way."""
         m, count = self.n_strips, points.shape[0]
         sweep = self.wing.sweep * DEG
         axis = np.array([math.sin(sweep), math.cos(sweep), 0.0])  # e_s
         midpoint = (self.arc[1:] + self.arc[:-1]) / 2
         columns = np.arange(count)
-        loads = np.zeros((2 * m, count))
+        loads = np.zeros((self.n_dof, count))
         loads[strips, columns] = forces[:, 2]
         loads[m + strips, columns] = np.cross(points, forces) @ axis
-        couple = forces[:, 2] * (points @ axis - midpoint[strips])
-        return loads + self.couple_to_strip_loads[:, strips] * couple
+        arm = points @ axis - midpoint[strips]
+        loads = loads + self.couple_to_strip_loads[:, strips] * (forces[:, 2] * arm)
+        if self.lag:
+            across = forces @ np.array([math.cos(sweep), -math.sin(sweep), 0.0])  # F . e_c
+            loads[2 * m + strips, columns] += across
+            # (arm e_s) x (F_c e_c) = -arm F_c n: the in-plane couple about the normal.
+            loads = loads + self.lag_couple_to_strip_loads[:, strips] * (-across * arm)
+        return loads
 
     @cached_property
     def modes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -170,11 +194,16 @@ class Structure:
 
 
 def structure(
-    wing: Wing, mass: MassModel | None = None, rows: np.ndarray | None = None
+    wing: Wing,
+    mass: MassModel | None = None,
+    rows: np.ndarray | None = None,
+    in_plane_bending_stiffness: np.ndarray | None = None,
 ) -> Structure:
     """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
     Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
-    tangent about a bent state, `solver.model.exact_beam`).
+    tangent about a bent state, `solver.model.exact_beam`); `in_plane_bending_stiffness` (N,)
+    [N m^2], EI_lag: the beam bends in the wing's plane too (module docstring; `rows` then
+    (5N, 5N)).
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
@@ -192,10 +221,17 @@ def structure(
     sweep = wing.sweep * DEG
     arc = wing.y / math.cos(sweep)
     beam = _Beam(
-        arc, wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling, rows
+        arc,
+        wing.bending_stiffness,
+        wing.torsional_stiffness,
+        wing.bending_torsion_coupling,
+        rows,
+        in_plane_bending_stiffness,
     )
+    lag = in_plane_bending_stiffness is not None
+    blocks = 3 if lag else 2
     inertia = section_inertia(mass, wing.chord, wing.elastic_axis, wing.sweep, wing.spar)
-    strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia)
+    strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia, lag)
     m = wing.n_stations - 1
     strip_rows = beam.strip_load_rows()
     flexibility = beam.flexibility()  # w per unit load row
@@ -205,25 +241,27 @@ def structure(
     mean = np.zeros((m, m))
     mean[np.arange(m), np.arange(m)] = 0.5
     mean[np.arange(1, m), np.arange(m - 1)] = 0.5
-    strip_motion = np.kron(np.eye(2), mean)
+    strip_motion = np.kron(np.eye(blocks), mean)
     mass_matrix = strips @ strip_motion
     kinetic = strip_motion.T @ strips @ strip_motion
     for item in mass.concentrated:
         if item.station == 0:
             continue  # the root is clamped: the mass never moves
-        block = np.array(
-            [
-                [item.mass, -item.mass * item.offset],
-                [-item.mass * item.offset, item.inertia + item.mass * item.offset**2],
-            ]
-        )
-        motion = np.zeros((2, 2 * m))
-        motion[0, item.station - 1] = 1.0
-        motion[1, m + item.station - 1] = 1.0
+        block = np.zeros((blocks, blocks))
+        block[:2, :2] = [
+            [item.mass, -item.mass * item.offset],
+            [-item.mass * item.offset, item.inertia + item.mass * item.offset**2],
+        ]
+        if lag:
+            block[2, 2] = item.mass  # moving in the wing's plane, coupled with nothing
+        motion = np.zeros((blocks, blocks * m))
+        for k in range(blocks):
+            motion[k, k * m + item.station - 1] = 1.0
         mass_matrix = mass_matrix + rows_to_strip_loads @ beam.station_load_rows(item.station) @ (
             block @ motion
         )
         kinetic = kinetic + motion.T @ block @ motion
+    lag_couples = rows_to_strip_loads @ beam.lag_couple_load_rows() if lag else None
     return Structure(
         wing=wing,
         arc=arc,
@@ -233,14 +271,21 @@ def structure(
         states=beam.states(flexibility),
         rows_to_strip_loads=rows_to_strip_loads,
         couple_to_strip_loads=rows_to_strip_loads @ beam.couple_load_rows(),
+        lag=lag,
+        lag_couple_to_strip_loads=lag_couples,
     )
 
 
 def _strip_inertia(
-    arc: np.ndarray, mass: np.ndarray, static_moment: np.ndarray, inertia: np.ndarray
+    arc: np.ndarray,
+    mass: np.ndarray,
+    static_moment: np.ndarray,
+    inertia: np.ndarray,
+    lag: bool = False,
 ) -> np.ndarray:
-    """(n, n) strip inertia: (F, tau) = -this (u'', phi'') of the strips' midpoints; mass,
-    static moment and inertia integrated over each strip (trapezoidal rule)."""
+    """(n, n) strip inertia: (F, tau) = -this (u'', phi'') of the strips' midpoints (and F_c =
+    -m v'' with lag); mass, static moment and inertia integrated over each strip (trapezoidal
+    rule)."""
     h = np.diff(arc)
 
     def integral(per_length: np.ndarray) -> np.ndarray:
@@ -249,12 +294,18 @@ def _strip_inertia(
     moment = integral(static_moment)
     # Heave up with a centre of gravity d aft: the section's points move u - x phi, so the
     # kinetic energy is (m u'^2 - 2 S u' phi' + I phi'^2) / 2.
-    return np.block([[integral(mass), -moment], [-moment, integral(inertia)]])
+    blocks = np.block([[integral(mass), -moment], [-moment, integral(inertia)]])
+    if not lag:
+        return blocks
+    # In the wing's plane every point of the section moves v (the twist moves the centre of
+    # gravity across the plane at second order only).
+    return scipy.linalg.block_diag(blocks, integral(mass))
 
 
 class _Beam:
     """The static model's beam rows as matrices (`solver.model.residual._Beam` and
-    `_structure_rows`): internal loads, load rows, deformation."""
+    `_structure_rows`): internal loads, load rows, deformation; with an in-plane bending
+    stiffness, the lag rows after them (module docstring)."""
 
     def __init__(
         self,
@@ -263,44 +314,73 @@ class _Beam:
         torsion: np.ndarray,
         coupling: np.ndarray | None = None,
         rows: np.ndarray | None = None,
+        lag: np.ndarray | None = None,
     ) -> None:
         self.arc, self.h = arc, np.diff(arc)
         self.rows = rows
         coupling = np.zeros_like(bending) if coupling is None else coupling
         self.stiffness = (bending, torsion, coupling)
         self.torsion_compliance, self.cross = section_compliance(bending, torsion, coupling)[1:]
+        self.lag = None if lag is None else np.asarray(lag, dtype=float)
         self.n = arc.shape[0]
+        self.blocks = 2 if self.lag is None else 3  # load rows per segment
 
-    def load_rows(self, moment: np.ndarray, torque: np.ndarray) -> np.ndarray:
+    def load_rows(
+        self, moment: np.ndarray, torque: np.ndarray, lag_moment: np.ndarray | None = None
+    ) -> np.ndarray:
         """(2(N-1), c) the bending and torsion rows' load terms of station moments and torques
         (N, c): -h_i/2 (M_i/EI_i + M_{i+1}/EI_{i+1}) and the same of T/GJ in degrees, with the
-        bending-torsion coupling's (`solver.model.beam.coupled_trapezoid`)."""
-        return np.vstack(coupled_trapezoid(self.h, moment, torque, self.stiffness))
+        bending-torsion coupling's (`solver.model.beam.coupled_trapezoid`); with lag
+        (3(N-1), c), the lag rows' of the in-plane moments about n `lag_moment` (N, c) after
+        them (default none)."""
+        rows = np.vstack(coupled_trapezoid(self.h, moment, torque, self.stiffness))
+        if self.lag is None:
+            return rows
+        if lag_moment is None:
+            return np.vstack([rows, np.zeros((self.n - 1, rows.shape[1]))])
+        per = lag_moment / self.lag[:, None]
+        return np.vstack([rows, -self.h[:, None] / 2 * (per[:-1] + per[1:])])
 
     def strip_load_rows(self) -> np.ndarray:
         """(2(N-1), 2(N-1)) load rows of unit strip loads: a vertical force at each strip's
-        midpoint on the EA (the first N - 1 columns), a torque about the EA on each strip."""
+        midpoint on the EA (the first N - 1 columns), a torque about the EA on each strip; with
+        lag (3(N-1), 3(N-1)), an in-plane force across the EA (along e_c) at each midpoint
+        after them."""
         m = self.n - 1
         midpoint = (self.arc[1:] + self.arc[:-1]) / 2
         forces = np.eye(m)
         moment = _outboard(forces * midpoint[:, None]) - self.arc[:, None] * _outboard(forces)
         torque = _outboard(np.eye(m))
         zeros = np.zeros((self.n, m))
-        return np.hstack([self.load_rows(moment, zeros), self.load_rows(zeros, torque)])
+        columns = [self.load_rows(moment, zeros), self.load_rows(zeros, torque)]
+        if self.lag is not None:
+            # (r_p - r_i) x F_c e_c = -(s_p - s_i) F_c n: an aft force's moment about n is the
+            # negative of an upward force's about e_c.
+            columns.append(self.load_rows(zeros, zeros, -moment))
+        return np.hstack(columns)
 
     def couple_load_rows(self) -> np.ndarray:
-        """(2(N-1), N-1) load rows of a unit bending couple on each strip."""
+        """(2(N-1), N-1) load rows of a unit bending couple on each strip (3(N-1) rows with
+        lag)."""
         m = self.n - 1
         return self.load_rows(_outboard(np.eye(m)), np.zeros((self.n, m)))
 
+    def lag_couple_load_rows(self) -> np.ndarray:
+        """(3(N-1), N-1) load rows of a unit in-plane couple about the normal n on each strip."""
+        m = self.n - 1
+        zeros = np.zeros((self.n, m))
+        return self.load_rows(zeros, zeros, _outboard(np.eye(m)))
+
     def station_load_rows(self, station: int) -> np.ndarray:
-        """(2(N-1), 2) load rows of a unit vertical force and a unit torque at `station`.
+        """(2(N-1), 2) load rows of a unit vertical force and a unit torque at `station` (with
+        lag (3(N-1), 3), and a unit in-plane force across the EA).
 
         The force's moment is continuous there. The torque is not: it acts on the segments
         inboard of the station only (the trapezoid of each segment takes the torque on its own
         side of the station), which keeps the rows exact for a uniform torsional stiffness."""
         moment = np.maximum(self.arc[station] - self.arc, 0.0)[:, None]
-        force_rows = self.load_rows(moment, np.zeros((self.n, 1)))
+        zero = np.zeros((self.n, 1))
+        force_rows = self.load_rows(moment, zero)
         inboard = np.arange(self.n - 1) < station
         per = 1.0 / self.torsion_compliance
         torque_rows = np.zeros((self.n - 1, 1))
@@ -309,15 +389,21 @@ class _Beam:
         bending_rows = np.zeros((self.n - 1, 1))
         cross = self.cross
         bending_rows[inboard, 0] = self.h[inboard] / 2 * (cross[:-1] + cross[1:])[inboard]
-        return np.hstack([force_rows, np.vstack([bending_rows, torque_rows])])
+        if self.lag is None:
+            return np.hstack([force_rows, np.vstack([bending_rows, torque_rows])])
+        lag_rows = np.zeros((self.n - 1, 1))
+        torque_column = np.vstack([bending_rows, torque_rows, lag_rows])
+        return np.hstack([force_rows, torque_column, self.load_rows(zero, zero, -moment)])
 
     def structure_rows(self) -> np.ndarray:
         """(3N, 3N) A: the structure rows' load-free part on z = (u, u', phi [deg]) (the
-        tangent given, if one was)."""
+        tangent given, if one was); with lag (5N, 5N), z = (u, u', phi [deg], v, psi), the lag
+        clamps, kinematics and bending rows after the others."""
         if self.rows is not None:
             return np.array(self.rows, dtype=float)
         n, m, h = self.n, self.n - 1, self.h
-        a = np.zeros((3 * n, 3 * n))
+        size = (3 if self.lag is None else 5) * n
+        a = np.zeros((size, size))
         a[0, 0] = a[1, n] = a[2, 2 * n] = 1.0  # clamps
         i = np.arange(m)
         rows = 3 + i
@@ -326,26 +412,48 @@ class _Beam:
         for block in (1, 2):  # slope and twist differences
             rows = 3 + block * m + i
             a[rows, block * n + i + 1], a[rows, block * n + i] = 1.0, -1.0
+        if self.lag is not None:
+            v, psi, first = 3 * n, 4 * n, 3 * n
+            a[first, v] = a[first + 1, psi] = 1.0  # lag clamps
+            # v' = -psi (a positive psi turns the axis forward, toward -e_c).
+            rows = first + 2 + i
+            a[rows, v + i + 1], a[rows, v + i] = 1.0, -1.0
+            a[rows, psi + i], a[rows, psi + i + 1] = h / 2, h / 2
+            rows = first + 2 + m + i
+            a[rows, psi + i + 1], a[rows, psi + i] = 1.0, -1.0
         return a
 
-    def response(self) -> np.ndarray:
-        """(3N, 2(N-1)) P = A^{-1} E: z = -P l for load rows l (`solver.numerics.stability`'s)."""
+    def _load_row_indices(self) -> np.ndarray:
+        """(blocks (N-1),) the rows of A whose load terms the load rows are: bending, torsion
+        (and lag bending)."""
         m = self.n - 1
-        selector = np.zeros((3 * self.n, 2 * m))
-        selector[3 + m + np.arange(2 * m), np.arange(2 * m)] = 1.0
-        return np.linalg.solve(self.structure_rows(), selector)
+        indices = 3 + m + np.arange(2 * m)
+        if self.lag is None:
+            return indices
+        return np.concatenate([indices, 3 * self.n + 2 + m + np.arange(m)])
+
+    def response(self) -> np.ndarray:
+        """(3N, 2(N-1)) P = A^{-1} E: z = -P l for load rows l (`solver.numerics.stability`'s);
+        (5N, 3(N-1)) with lag."""
+        indices = self._load_row_indices()
+        a = self.structure_rows()
+        selector = np.zeros((a.shape[0], indices.shape[0]))
+        selector[indices, np.arange(indices.shape[0])] = 1.0
+        return np.linalg.solve(a, selector)
 
     def flexibility(self) -> np.ndarray:
-        """(2(N-1), 2(N-1)): w of unit load rows, -S P (S picks u and phi [rad] off the root)."""
-        m = self.n - 1
+        """(n, n): w of unit load rows, -S P (S picks u, phi [rad] (and v) off the root)."""
+        m, n = self.n - 1, self.n
         response = self.response()
-        pick = np.r_[1 : self.n, 2 * self.n + 1 : 3 * self.n]
-        flexibility = -response[pick]
-        flexibility[m:] *= DEG
+        pick = [np.arange(1, n), np.arange(2 * n + 1, 3 * n)]
+        if self.lag is not None:
+            pick.append(np.arange(3 * n + 1, 4 * n))
+        flexibility = -response[np.concatenate(pick)]
+        flexibility[m : 2 * m] *= DEG
         return flexibility
 
     def states(self, flexibility: np.ndarray) -> np.ndarray:
-        """(3N, 2(N-1)) Z: the unknowns z of w, -P F^{-1}."""
+        """(3N, n) Z ((5N, n) with lag): the unknowns z of w, -P F^{-1}."""
         return -self.response() @ np.linalg.inv(flexibility)
 
 
@@ -353,12 +461,13 @@ def natural_modes(
     wing: Wing, mass: MassModel | None = None, count: int | None = None
 ) -> NaturalModes:
     """The lowest `count` natural modes of `wing` with `mass` in vacuum (default: all of them,
-    2 (N - 1)), clamped at the root.
+    2 (N - 1), 3 (N - 1) when the wing bends in its plane, `Wing.in_plane_bending_stiffness`),
+    clamped at the root (about the jig, where the geometrically exact beam is the linear one).
 
     Each shape is scaled so that the largest vertical displacement of a leading or a trailing
-    edge is 1 m, and that displacement is upward. Raises `InvalidInput` without a mass model."""
-    check_lag(wing.in_plane_bending_stiffness, None, "vibration modes")
-    beam = structure(wing, mass)
+    edge (or, with lag, the axis's in-plane displacement if larger) is 1 m, and that
+    displacement is upward (aft). Raises `InvalidInput` without a mass model."""
+    beam = structure(wing, mass, in_plane_bending_stiffness=wing.in_plane_bending_stiffness)
     if count is None:
         count = beam.n_dof
     if not (isinstance(count, int) and 1 <= count <= beam.n_dof):
@@ -370,8 +479,11 @@ def natural_modes(
 
 def largest_edge_displacement(beam: Structure, vector: np.ndarray) -> float:
     """[m] the vertical displacement of a leading or trailing edge of the degrees of freedom
-    `vector` (n,) largest in magnitude (signed)."""
+    `vector` (n,) largest in magnitude (signed); with lag, or the in-plane displacement of the
+    elastic axis if that is larger (an in-plane mode has no vertical one)."""
     edges = _edges(beam, vector)
+    if beam.lag:
+        edges = np.concatenate([edges, _lag(beam, vector)])
     return float(edges[np.argmax(np.abs(edges))])
 
 
@@ -380,30 +492,49 @@ def _edges(beam: Structure, vector: np.ndarray) -> np.ndarray:
     wing = beam.wing
     z = beam.states @ vector
     n = wing.n_stations
-    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
+    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n : 3 * n]
     sweep = wing.sweep * DEG
     twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
     ahead = wing.elastic_axis * wing.chord
     return np.concatenate([heave + ahead * twist * DEG, heave - (wing.chord - ahead) * twist * DEG])
 
 
+def _lag(beam: Structure, vector: np.ndarray) -> np.ndarray:
+    """(N,) [m] the elastic axis's in-plane displacement v (along e_c, aft) of `vector`."""
+    n = beam.wing.n_stations
+    return (beam.states @ vector)[3 * n : 4 * n]
+
+
 def mode_shape(beam: Structure, vector: np.ndarray, frequency: float) -> ModeShape:
     """The shape of the degrees of freedom `vector` (n,), at `frequency` [rad/s]: scaled as in
-    `natural_modes`, with its bending share."""
+    `natural_modes`, with its bending share (and, with lag, its in-plane displacement and
+    share)."""
     wing = beam.wing
     z = beam.states @ vector
     n = wing.n_stations
-    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n :]
+    heave, slope, axis_twist = z[:n], z[n : 2 * n], z[2 * n : 3 * n]
     sweep = wing.sweep * DEG
     twist = axis_twist * math.cos(sweep) - np.degrees(slope) * math.sin(sweep)
     scale = 1.0 / largest_edge_displacement(beam, vector)
     m, kinetic = beam.n_strips, beam.kinetic_mass
     heave_energy = vector[:m] @ kinetic[:m, :m] @ vector[:m]  # m u'^2 (times omega^2 / 2)
-    twist_energy = vector[m:] @ kinetic[m:, m:] @ vector[m:]  # I_ea phi'^2
+    twist_energy = vector[m : 2 * m] @ kinetic[m : 2 * m, m : 2 * m] @ vector[m : 2 * m]
+    if not beam.lag:
+        return ModeShape(
+            frequency=frequency,
+            heave=heave * scale,
+            twist=twist * scale,
+            axis_twist=axis_twist * scale,
+            bending_share=float(heave_energy / (heave_energy + twist_energy)),
+        )
+    lag_energy = vector[2 * m :] @ kinetic[2 * m :, 2 * m :] @ vector[2 * m :]  # m v'^2
+    total = heave_energy + twist_energy + lag_energy
     return ModeShape(
         frequency=frequency,
         heave=heave * scale,
         twist=twist * scale,
         axis_twist=axis_twist * scale,
-        bending_share=float(heave_energy / (heave_energy + twist_energy)),
+        bending_share=float(heave_energy / total),
+        lag=_lag(beam, vector) * scale,
+        lag_share=float(lag_energy / total),
     )

@@ -50,7 +50,19 @@ class ModeShape:
         "-",
         "share of the mode's kinetic energy in the heave of the elastic axis, the rest in the "
         "twist about it (1: pure bending, 0: pure torsion; the centre of gravity's offset "
-        "couples them)",
+        "couples them); with in-plane bending, of the total, lag_share the in-plane part",
+    )
+    lag: np.ndarray | None = quantity(
+        "m",
+        "in-plane displacement of the elastic axis across it (aft at zero sweep), at the same "
+        "scale; null without an in-plane bending stiffness",
+        default=None,
+    )
+    lag_share: float | None = quantity(
+        "-",
+        "share of the mode's kinetic energy in the in-plane (lag) motion; null without an "
+        "in-plane bending stiffness",
+        default=None,
     )
 
 

@@ -305,34 +305,39 @@ def test_a_twisted_wing_soft_in_its_plane_bends_aft_along_its_sections_normal():
     np.testing.assert_allclose(integrated_beta, beta, rtol=0, atol=1e-9 * np.max(np.abs(beta)))
 
 
-# --- Without the field: today's answers to the bit --------------------------------------------
+# --- Without the field: today's answers --------------------------------------------
 
 # The study wing's answers (tip heave, tip twist, lift, root bending moment, root torque, the
 # sums of the heaves and twists) measured before lag existed (main at 1436ccb, CasADi 3.8.2,
-# x86_64, OPENBLAS_NUM_THREADS=1 as .ci/run sets it), as float.hex: the layout, rows, parameter
-# table and code path of a wing without `in_plane_bending_stiffness` are today's, so every bit
-# is. A dihedral wing too (its slot table unchanged: the lag slot exists in lag layouts only).
-TODAYS_BITS = {
-    ("linear", 12.0): ["0x1.44db35635efc0p-4", "0x1.565fed471a39bp+1", "0x1.da27fcf840cccp+8",
-                       "0x1.01835fcd61a31p+9", "0x1.20601490ac6b6p+5", "0x1.ca4a86b911dd5p-1",
-                       "0x1.78a1433a789a3p+5"],
-    ("linear", 18.0): ["0x1.2e673233e41f4p-2", "0x1.1c8d91ddfd7f0p+3", "0x1.90625f7f181e1p+10",
-                       "0x1.cf1f873f2e67bp+10", "0x1.cb7c18ff8f30cp+6", "0x1.a7ee233c2bf66p+1",
-                       "0x1.3a0388efbd646p+7"],
-    ("geometrically_exact", 12.0): ["0x1.46f112f63993ep-4", "0x1.62ea5b0bb99e2p+1",
-                                    "0x1.dc0ad854809d7p+8", "0x1.02eabec0bc631p+9",
-                                    "0x1.214e792006d3ap+5", "0x1.cd23f3da4e636p-1",
-                                    "0x1.814e9dc77dc75p+5"],
-    ("geometrically_exact", 18.0): ["0x1.41a0901bacc70p-2", "0x1.4c1e58b1ceceep+3",
-                                    "0x1.a23974f7fde3ep+10", "0x1.e9785a1f2a60bp+10",
-                                    "0x1.dcacb5918461fp+6", "0x1.c2517381210a6p+1",
-                                    "0x1.5d46bc601aa7fp+7"],
+# x86_64, OPENBLAS_NUM_THREADS=1). On that machine they were equal to the bit after the change
+# (measured at the merge: the layout, rows, parameter table and code path of a wing without
+# `in_plane_bending_stiffness` are today's; a dihedral wing's too, the lag slot existing in lag
+# layouts only). Held here to 1e-10 relative, not to the bit: another CPU, BLAS or ISA level
+# moves a Newton solution's last digits, while any change of the model's rows, parameters or
+# path moves these answers by far more (the lag model's own small-deflection difference is
+# 1e-8 to 1e-3).
+ROUND_OFF = 1e-10
+TODAYS_ANSWERS = {
+    ("linear", 12.0): [0.07931061606171763, 2.6748024556331536, 474.15620376188303,
+                       515.026361153292, 36.04691422487433, 0.8950998402514708,
+                       47.07874150925206],
+    ("linear", 18.0): [0.2953155368968787, 8.892281468939444, 1601.5370786414644,
+                       1852.4926298096823, 114.87118911086526, 3.3119548839385287,
+                       157.00690411745944],
+    ("geometrically_exact", 12.0): [0.07981974989852333, 2.77277696678651,
+                                    476.0423634351732, 517.8339463157519,
+                                    36.16331696530183, 0.9006649211871209,
+                                    48.16338687756153],
+    ("geometrically_exact", 18.0): [0.3140890614406038, 10.37870440223784,
+                                    1672.8977642039677, 1957.8805005945057,
+                                    119.16866137857913, 3.5181106930268298,
+                                    174.638155940298],
 }  # fmt: skip
-DIHEDRAL_EXACT_18 = ["0x1.402f35d959606p-2", "0x1.4af48423247bbp+3", "0x1.9e121802ddee3p+10"]
+DIHEDRAL_EXACT_18 = [0.3126800931844119, 10.342348164212913, 1656.282715527276]
 
 
-@pytest.mark.parametrize(("structure", "velocity"), list(TODAYS_BITS), ids=str)
-def test_without_the_field_the_study_wings_answers_are_todays_to_the_bit(structure, velocity):
+@pytest.mark.parametrize(("structure", "velocity"), list(TODAYS_ANSWERS), ids=str)
+def test_without_the_field_the_study_wings_answers_are_todays(structure, velocity):
     from tests.study import flight, study_wing
 
     answer = solver.solve(
@@ -349,16 +354,16 @@ def test_without_the_field_the_study_wings_answers_are_todays_to_the_bit(structu
         float(sum(st.heave)),
         float(sum(st.twist)),
     ]
-    assert [float(v).hex() for v in numbers] == TODAYS_BITS[(structure, velocity)]
+    assert numbers == pytest.approx(TODAYS_ANSWERS[(structure, velocity)], rel=ROUND_OFF)
 
 
-def test_without_the_field_a_dihedral_wings_exact_answer_is_todays_to_the_bit():
+def test_without_the_field_a_dihedral_wings_exact_answer_is_todays():
     from tests.study import flight, study_arrays
 
     wing = solver.Wing.create(**study_arrays(30), dihedral=5.0)
     answer = solver.solve(wing, flight(18.0), options=EXACT)
     numbers = [answer.stations.heave[-1], answer.stations.twist[-1], answer.totals.lift]
-    assert [float(v).hex() for v in numbers] == DIHEDRAL_EXACT_18
+    assert numbers == pytest.approx(DIHEDRAL_EXACT_18, rel=ROUND_OFF)
 
 
 # --- Refusals: a 422 naming the field ---------------------------------------------------------
@@ -379,17 +384,12 @@ def test_with_the_linear_beam_the_in_plane_stiffness_is_refused_naming_it():
     assert refused.value.field == LAG_FIELD
 
 
-@pytest.mark.parametrize("operation", ["flutter", "natural_modes"])
-def test_operations_that_do_not_take_lag_yet_refuse_it_naming_the_field(operation):
-    """Lag is statics-only for now: the Python entries of the other operations refuse it (the
-    service's operations too, before any work: tests/app/test_matrix.py meets the field with
-    every operation)."""
+def test_flutter_does_not_take_lag_yet_and_refuses_it_naming_the_field():
+    """Lag is statics (and the natural modes about the jig) for now: flutter's Python entry
+    refuses it (the service's operations too, before any work: tests/app/test_matrix.py meets
+    the field with every operation)."""
     wing = _small_wing(in_plane_bending_stiffness=4e5)
     with pytest.raises(solver.InvalidInput) as refused:
-        if operation == "flutter":
-            solver.flutter(wing, None, [10.0], 1.225, options=EXACT)
-        else:
-            solver.natural_modes(wing, None)
+        solver.flutter(wing, None, [10.0], 1.225, options=EXACT)
     assert refused.value.field == LAG_FIELD
-    if operation == "flutter":
-        assert "statics-only" in str(refused.value)
+    assert "statics-only" in str(refused.value)
