@@ -67,7 +67,7 @@ from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.fields import integer, is_number, number, parameter, specs
 from solver.inputs.flight import check_over_airspeeds, dynamic_pressure
 from solver.inputs.mass import MassModel
-from solver.inputs.options import SolverOptions, check_lag
+from solver.inputs.options import LAG_ABOUT_LOADED, SolverOptions, check_lag, refuse_lag
 from solver.inputs.wing import Wing
 from solver.numerics.evaluation import Evaluation
 from solver.results.flutter import FlutterInfo, FlutterPoint, FlutterResult
@@ -209,10 +209,12 @@ def flutter(
     (status "no_equilibrium")."""
     started = time.perf_counter()
     options = options or SolverOptions()
-    check_lag(wing.in_plane_bending_stiffness, options, "vibration modes and flutter")
+    check_lag(wing.in_plane_bending_stiffness, options, "")
+    if wing.in_plane_bending_stiffness is not None and (alpha is not None or lift is not None):
+        refuse_lag(LAG_ABOUT_LOADED)
     settings = flutter_options or FlutterOptions()
     speeds = _check(wing, velocities, density, alpha, lift)
-    beam = structure(wing, mass)
+    beam = structure(wing, mass, in_plane_bending_stiffness=wing.in_plane_bending_stiffness)
     count = min(_DEFAULT_MODES, beam.n_dof) if settings.modes is None else settings.modes
     if count > beam.n_dof:
         raise InvalidInput("flutter.modes", f"must be at most {beam.n_dof} on this mesh")
@@ -275,7 +277,9 @@ def _tangent(
     if not layout.exact:
         return beam
     rows = evaluation.jacobian0[layout.structure_rows, layout.structure]
-    return structure(beam.wing, mass, rows=rows)
+    return structure(
+        beam.wing, mass, rows=rows, in_plane_bending_stiffness=beam.wing.in_plane_bending_stiffness
+    )
 
 
 def _basis(beam: Structure, aerodynamic: np.ndarray, q_div: float | None, count: int) -> Basis:

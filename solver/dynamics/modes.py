@@ -168,11 +168,12 @@ class Structure:
         loads[m + strips, columns] = np.cross(points, forces) @ axis
         arm = points @ axis - midpoint[strips]
         loads = loads + self.couple_to_strip_loads[:, strips] * (forces[:, 2] * arm)
-        if self.lag:
+        if self.lag_couple_to_strip_loads is not None:  # with lag
             across = forces @ np.array([math.cos(sweep), -math.sin(sweep), 0.0])  # F . e_c
             loads[2 * m + strips, columns] += across
             # (arm e_s) x (F_c e_c) = -arm F_c n: the in-plane couple about the normal.
-            loads = loads + self.lag_couple_to_strip_loads[:, strips] * (-across * arm)
+            couples = self.lag_couple_to_strip_loads[:, strips]
+            loads = loads + couples * (-across * arm)
         return loads
 
     @cached_property

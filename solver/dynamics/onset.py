@@ -21,6 +21,11 @@ __all__ = ["Tracked", "flutter_onset", "linear_onset", "no_flutter"]
 # The flutter speed is located to this relative tolerance.
 _SPEED_TOLERANCE = 1e-10
 _SECANT_ITERATIONS = 60
+# A root grows when Re(s) exceeds this share of |s|: below it a root is neutral to round-off (a
+# mode no air damps, as an in-plane bending mode about the unloaded wing: Re(s) ~2e-16 |s|, its
+# sign the arithmetic's), so it never "crosses"; a real flutter's growth past its crossing is
+# orders of magnitude above it (the p-k roots converge to 1e-10 of |s| by default).
+_NEUTRAL = 1e-9
 
 
 @dataclass
@@ -52,7 +57,11 @@ def flutter_onset(
         before, after = tracked.roots[i - 1], tracked.roots[i]
         if before is None or after is None:
             continue  # no equilibrium at one of them: nothing to bracket
-        crossing = (before.real <= 0) & (after.real > 0) & oscillating(after)
+        crossing = (
+            (before.real <= _NEUTRAL * np.abs(before))
+            & (after.real > _NEUTRAL * np.abs(after))
+            & oscillating(after)
+        )
         if not np.any(crossing):
             continue
         modes = np.flatnonzero(crossing)
@@ -86,6 +95,8 @@ def _locate(
     alone."""
     f_low, f_high = float(before[mode].real), float(after[mode].real)
     s_low, s_high = before[mode : mode + 1], after[mode : mode + 1]
+    if f_low >= 0:  # neutral at `low` to round-off (`_NEUTRAL`): it starts to grow there
+        return low, complex(before[mode]), mode, 0
     iterations = 0
     velocity, root = high, after[mode]
     side = 0

@@ -143,7 +143,10 @@ def unsteady_aerodynamics(
     structure: Structure, layout: Layout, evaluation: Evaluation
 ) -> UnsteadyAerodynamics:
     """The loads of small oscillations about the state whose exact Jacobians `evaluation`
-    holds (J0, J1 of the static model on `layout`, aerodynamics as the layout says)."""
+    holds (J0, J1 of the static model on `layout`, aerodynamics as the layout says). With lag
+    (a structure bending in the wing's plane, `solver.dynamics.modes`) the in-plane motion
+    moves no collocation point across the plane and carries no section loads; about the
+    unloaded wing nothing couples it (flutter takes lag about the jig only)."""
     wing = structure.wing
     z_of_w = structure.states  # (3N, n)
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
@@ -152,7 +155,7 @@ def unsteady_aerodynamics(
     solve = np.linalg.solve
     influence = j0[tangency, circulation]
     deformation = -solve(influence, j0[tangency, layout.structure] @ z_of_w)
-    motion = -solve(influence, _upwash(structure, layout) @ z_of_w)
+    motion = -solve(influence, _upwash(structure, layout, z_of_w.shape[0]) @ z_of_w)
     geometric = structure.strip_loads_of(load_rows[:, layout.structure] @ z_of_w)
     circulation_loads = structure.strip_loads_of(load_rows[:, circulation])
     mass, damping = _apparent_loads(structure)
@@ -168,10 +171,11 @@ def unsteady_aerodynamics(
     )
 
 
-def _upwash(structure: Structure, layout: Layout) -> np.ndarray:
-    """(M, 3N): N of the module docstring on z, each panel's upwash per unit s / V: minus the
-    vertical displacement of its strip's three-quarter-chord line (the mean of its two
-    stations', at (3/4 - x_ea) c aft of the elastic axis)."""
+def _upwash(structure: Structure, layout: Layout, size: int) -> np.ndarray:
+    """(M, size): N of the module docstring on z (`size` its length, 3N, or 5N with lag),
+    each panel's upwash per unit s / V: minus the vertical displacement of its strip's
+    three-quarter-chord line (the mean of its two stations', at (3/4 - x_ea) c aft of the
+    elastic axis). A motion in the wing's plane (lag) moves no collocation point across it."""
     wing = structure.wing
     n = wing.n_stations
     sweep = wing.sweep * DEG
@@ -182,6 +186,7 @@ def _upwash(structure: Structure, layout: Layout) -> np.ndarray:
             np.eye(n),
             np.diag(aft * math.sin(sweep)),
             -np.diag(aft * math.cos(sweep) * DEG),
+            np.zeros((n, size - 3 * n)),
         ]
     )
     strips = -(point[:-1] + point[1:]) / 2
@@ -205,8 +210,10 @@ def _apparent_loads(structure: Structure) -> tuple[np.ndarray, np.ndarray]:
     sweep = wing.sweep * DEG
 
     def equivalent(lift: np.ndarray, moment: np.ndarray) -> np.ndarray:
-        # A streamwise moment is a torque about the swept axis and a bending couple.
-        direct = np.vstack([lift, math.cos(sweep) * moment])
+        # A streamwise moment is a torque about the swept axis and a bending couple; the
+        # sections' non-circulatory loads have no part in the wing's plane (lag rows zero).
+        direct = np.zeros((structure.n_dof, lift.shape[1]))
+        direct[: 2 * lift.shape[0]] = np.vstack([lift, math.cos(sweep) * moment])
         return direct + structure.couple_to_strip_loads @ (-math.sin(sweep) * moment)
 
     return equivalent(lift_s2, moment_s2), equivalent(lift_vs, moment_vs)

@@ -15,6 +15,7 @@ from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
 
 __all__ = [
+    "LAG_ABOUT_LOADED",
     "LAG_FIELD",
     "check_lag",
     "refuse_lag",
@@ -265,16 +266,23 @@ class SolverOptions:
 
 
 LAG_FIELD = "wing.in_plane_bending_stiffness"
+# Flutter takes lag about the jig only: about a lifting wing its lag mode, which only the
+# sections' profile drag would damp (not modelled), couples with torsion and bending through the
+# lift (flap-lag flutter): docs/design/lag_bending.md, step 4.
+LAG_ABOUT_LOADED = (
+    "flutter about a loaded equilibrium (flight alpha or lift; about the jig it is taken), "
+    "whose lag mode needs the sections' profile drag"
+)
 
 
 def refuse_lag(what: str) -> None:
     """Refuse a wing with lag bending (`solver.model.lag_beam`) for `what` (a phrase naming
-    the operation or the part of it), naming `wing.in_plane_bending_stiffness`: lag is
-    statics-only for now."""
+    the operation or the part of it), naming `wing.in_plane_bending_stiffness`: lag is taken
+    by the statics and flutter only for now."""
     raise InvalidInput(
         LAG_FIELD,
-        f"lag (in-plane) bending is statics-only for now (/solve and /sweep): {what} does not "
-        "take it yet; leave the field out (the wing rigid in its plane)",
+        f"lag (in-plane) bending is taken by /solve, /sweep and /flutter for now: {what} does "
+        "not take it yet; leave the field out (the wing rigid in its plane)",
     )
 
 

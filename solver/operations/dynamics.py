@@ -9,7 +9,7 @@ from solver import fields
 from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.fields import parameter
 from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
-from solver.inputs.options import SolverOptions, check_lag
+from solver.inputs.options import LAG_ABOUT_LOADED, SolverOptions, check_lag, refuse_lag
 from solver.inputs.wing import Wing, require_mass
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed
 from solver.results.flutter import FlutterResult
@@ -57,11 +57,9 @@ class FlutterInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        check_lag(
-            self.wing.in_plane_bending_stiffness,
-            self.options,
-            "vibration modes and flutter (/flutter)",
-        )
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
+        if self.loaded and self.wing.in_plane_bending_stiffness is not None:
+            refuse_lag(LAG_ABOUT_LOADED)
         require_mass(self.wing, _VIBRATION)
         check_airspeeds(self.velocities)
         check_over_airspeeds(

@@ -80,9 +80,15 @@ def panels(wing: Wing, chordwise: int, state: np.ndarray | None = None) -> Panel
     n, k = wing.n_stations, chordwise
     z = np.zeros(3 * n) if state is None else np.asarray(state, dtype=float)[: 3 * n]
     layout = Layout(n, k)
+    # The linear beam's lattice: a wing's in-plane stiffness (a lag layout's slot) moves none of
+    # these panels.
+    values = {
+        name: value
+        for name, value in layout.wing_values(wing).items()
+        if name != "in_plane_bending_stiffness"
+    }
     parameters = layout.pack(
-        layout.wing_values(wing)
-        | {"camber": wing.camber_at(chordwise_nodes(k)), "alpha": 0.0, "deformed_axis": 0.0}
+        values | {"camber": wing.camber_at(chordwise_nodes(k)), "alpha": 0.0, "deformed_axis": 0.0}
     )
     left, right, collocation, normal, leading_edge = (
         np.array(value).T

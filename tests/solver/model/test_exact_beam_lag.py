@@ -384,12 +384,11 @@ def test_with_the_linear_beam_the_in_plane_stiffness_is_refused_naming_it():
     assert refused.value.field == LAG_FIELD
 
 
-def test_flutter_does_not_take_lag_yet_and_refuses_it_naming_the_field():
-    """Lag is statics (and the natural modes about the jig) for now: flutter's Python entry
-    refuses it (the service's operations too, before any work: tests/app/test_matrix.py meets
-    the field with every operation)."""
+def test_gust_loads_do_not_take_lag_yet_and_refuse_it_naming_the_field():
+    """Gust loads' Python entry refuses lag (the service's operations too, before any work:
+    tests/app/test_matrix.py meets the field with every operation)."""
     wing = _small_wing(in_plane_bending_stiffness=4e5)
     with pytest.raises(solver.InvalidInput) as refused:
-        solver.flutter(wing, None, [10.0], 1.225, options=EXACT)
+        solver.gust_analysis(wing, solver.FlightCondition(10.0, weight=100.0), options=EXACT)
     assert refused.value.field == LAG_FIELD
-    assert "statics-only" in str(refused.value)
+    assert "does not take it yet" in str(refused.value)
