@@ -138,7 +138,9 @@ def _tip_under_in_plane_load(n: int, load_parameter: float) -> tuple[float, floa
     return -state[4 * n - 1] / LENGTH, 1.0 - tip_along / LENGTH
 
 
-@pytest.mark.parametrize("load_parameter", list(BISSHOPP_DRUCKER), ids=lambda a: f"PL2_EI_{a:g}")
+# Three of the table's six loads, its ends and middle: the rows are the flap test's turned (which
+# takes all six), and each point costs a 161-station continuation.
+@pytest.mark.parametrize("load_parameter", [1.0, 3.0, 10.0], ids=lambda a: f"PL2_EI_{a:g}")
 def test_a_dead_in_plane_tip_load_bends_the_cantilever_as_bisshopp_and_druckers_table(
     load_parameter,
 ):
