@@ -199,12 +199,15 @@ def structure(
     mass: MassModel | None = None,
     rows: np.ndarray | None = None,
     in_plane_bending_stiffness: np.ndarray | None = None,
+    strip_load_rows: np.ndarray | None = None,
 ) -> Structure:
     """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
     Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
     tangent about a bent state, `solver.model.exact_beam`); `in_plane_bending_stiffness` (N,)
     [N m^2], EI_lag: the beam bends in the wing's plane too (module docstring; `rows` then
-    (5N, 5N)).
+    (5N, 5N)); `strip_load_rows` (n, n), the load rows of unit strip loads to take instead of
+    the jig's (about a bent state, `solver.model.lag_beam.bent_strip_load_rows`; concentrated
+    masses' stay the jig's).
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
@@ -234,7 +237,7 @@ def structure(
     inertia = section_inertia(mass, wing.chord, wing.elastic_axis, wing.sweep, wing.spar)
     strips = _strip_inertia(arc, inertia.mass, inertia.static_moment, inertia.inertia, lag)
     m = wing.n_stations - 1
-    strip_rows = beam.strip_load_rows()
+    strip_rows = beam.strip_load_rows() if strip_load_rows is None else strip_load_rows
     flexibility = beam.flexibility()  # w per unit load row
     stiffness = np.linalg.inv(flexibility @ strip_rows)
     rows_to_strip_loads = np.linalg.inv(strip_rows)

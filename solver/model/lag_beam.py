@@ -54,7 +54,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from solver.model.beam import DEG_PER_RAD
+from solver.model.beam import DEG_PER_RAD, section_compliance
 from solver.model.exact_beam import EXACT_LOADS, ExactBeam
 from solver.model.geometry import (
     DEG,
@@ -68,6 +68,7 @@ from solver.model.layout import Layout
 
 __all__ = [
     "LagBeam",
+    "bent_strip_load_rows",
     "lag_axis_points",
     "lag_internal_loads",
     "lag_structure_rows",
@@ -263,3 +264,59 @@ def lag_axis_points(wing: Any, heave: np.ndarray, rotations: tuple[np.ndarray, .
     x, y = e_x * along + e_y * lag, e_y * along - e_x * lag
     cos, sin = np.cos(np.radians(wing.dihedral)), np.sin(np.radians(wing.dihedral))
     return np.vstack([x, y * cos - heave * sin, y * sin + heave * cos])
+
+
+def bent_strip_load_rows(
+    wing: Any, beta: np.ndarray, phi: np.ndarray, psi: np.ndarray
+) -> np.ndarray:
+    """Numpy, for the vibration model about a bent state: (3(N-1), 3(N-1)) the bending,
+    torsion and lag bending rows' load terms (`LagBeam.lag_rows`' units) of unit strip loads
+    at the rotations beta [rad], phi [deg], psi [rad] (N,): a force along n at each strip's
+    middle on the deformed axis (the first N - 1 columns), a torque about the strip's tangent,
+    a force along e_c (`solver.dynamics.modes`' strip loads, whose rows about the jig these
+    are to the bit). On the bent wing a force across the axis in its plane, acting above the
+    stations inboard, twists them: the geometric coupling of torsion with lag bending that
+    lowers the torsion frequency of a bent wing (docs/design/lag_bending.md, step 3)."""
+    n = wing.n_stations
+    m = n - 1
+    h = np.diff(np.asarray(wing.arc_length, dtype=float))
+    line = np.stack(lag_reference_line(beta, psi, h), axis=1)  # (N, 3) in (e_s, n, e_c)
+    middle = (line[:-1] + line[1:]) / 2
+
+    def tangent(b: np.ndarray, p: np.ndarray) -> np.ndarray:
+        return np.stack([np.cos(b) * np.cos(p), np.sin(b), -np.cos(b) * np.sin(p)], axis=-1)
+
+    t = tangent(beta, psi)
+    flap_axis = np.stack([np.sin(psi), np.zeros(n), np.cos(psi)], axis=-1)  # e_c'
+    lag_axis = np.stack(
+        [-np.sin(beta) * np.cos(psi), np.cos(beta), np.sin(beta) * np.sin(psi)], axis=-1
+    )  # n''
+    strip_tangent = tangent((beta[:-1] + beta[1:]) / 2, (psi[:-1] + psi[1:]) / 2)
+    ei, gj, cross = section_compliance(
+        wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
+    )
+    ei_lag = np.asarray(wing.in_plane_bending_stiffness, dtype=float)
+    cos_t, sin_t = np.cos(phi * DEG), np.sin(phi * DEG)
+    units = (np.array([0.0, 1.0, 0.0]), None, np.array([0.0, 0.0, 1.0]))
+    rows = np.zeros((3 * m, 3 * m))
+    for kind, unit in enumerate(units):
+        for j in range(m):
+            moment = np.zeros((n, 3))  # about each station, stations outboard of j carry none
+            if unit is None:
+                moment[: j + 1] = strip_tangent[j]
+            else:
+                moment[: j + 1] = np.cross(middle[j] - line[: j + 1], unit)
+            torque = np.einsum("ij,ij->i", moment, t)
+            flap = np.einsum("ij,ij->i", moment, flap_axis)
+            lag = np.einsum("ij,ij->i", moment, lag_axis)
+            flap_s, lag_s = cos_t * flap - sin_t * lag, sin_t * flap + cos_t * lag
+            kappa_f = flap_s / ei - cross * torque
+            kappa_l = lag_s / ei_lag
+            twist_rate = torque / gj - cross * flap_s
+            beta_rate = cos_t * kappa_f + sin_t * kappa_l
+            psi_rate = (-sin_t * kappa_f + cos_t * kappa_l) / np.cos(beta)
+            column = kind * m + j
+            rows[:m, column] = -h / 2 * (beta_rate[:-1] + beta_rate[1:])
+            rows[m : 2 * m, column] = -DEG_PER_RAD * h / 2 * (twist_rate[:-1] + twist_rate[1:])
+            rows[2 * m :, column] = -h / 2 * (psi_rate[:-1] + psi_rate[1:])
+    return rows

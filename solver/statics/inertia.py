@@ -54,8 +54,8 @@ import numpy as np
 
 from solver.inputs.mass import MassModel
 from solver.inputs.wing import Wing
-from solver.model.beam import coupled_trapezoid
-from solver.model.geometry import arc_length, in_wing_plane, reference_line
+from solver.model.beam import DEG_PER_RAD, coupled_trapezoid, section_compliance
+from solver.model.geometry import DEG, arc_length, in_wing_plane, lag_reference_line, reference_line
 from solver.model.layout import Layout
 from solver.numerics.cache import cached
 
@@ -65,6 +65,8 @@ __all__ = [
     "InertialLoads",
     "deformed_loads",
     "deformed_rows",
+    "lag_deformed_loads",
+    "lag_deformed_rows",
     "deformed_stations",
     "inertial_loads",
     "strip_station_weights",
@@ -235,3 +237,115 @@ def deformed_rows(
         h, loads.bending_beta, loads.torque_beta, stiffness
     )
     return rows, rows_beta
+
+
+# --- Lag layouts: the weight about the deformed stations in three dimensions ---------------------
+#
+# With lag bending (`solver.model.lag_beam`) each mass point sits on the 3D reference line
+# (S, u, v): the weight F_p n (signed, one g, normal to the plane: `InertialLoads.
+# station_weights`) at the middle of a strip's chord (a concentrated mass at its station) has
+# the moment about the deformed station r_i, in (e_s, n, e_c),
+#
+#     M_i = sum_p (r_p - r_i) x F_p n = -sum_p F_p (v_p - v_i) e_s + sum_p F_p (S_p - S_i) e_c
+#
+# and the static moments' torque about the jig axis T_jig as the planar
+# exact beam takes it (the offsets along e_c, which the rotations turn at second order only).
+# Projected on the section's axes as the lag beam's loads (`solver.model.lag_beam.
+# section_moments`) and integrated by its rows (`LagBeam.rates_of`, `lag_rows`): the weight of a
+# lagged wing twists it through v (the first term), which is the coupling the lag model adds.
+
+
+@functools.cache
+def _lag_rows_function(n: int) -> ca.Function:
+    """(beta, phi [deg], psi (N,), h (N-1,), station weights (N, N), T_jig (N,), EI*, GJ*, c,
+    EI_lag (N,)) -> the lag beam's bending, torsion and lag rows (3(N-1),) of the one-g weight,
+    their derivative in (beta, phi, psi) (3(N-1), 3N), and the stations' T, M_f, M_l (N,)."""
+    beta, phi_deg, psi = (ca.SX.sym(name, n) for name in ("beta", "phi", "psi"))
+    h = ca.SX.sym("h", n - 1)
+    weights = ca.SX.sym("weights", n, n)
+    torque_jig, ei, gj, cross, ei_lag = (
+        ca.SX.sym(name, n) for name in ("torque_jig", "ei", "gj", "cross", "ei_lag")
+    )
+    along, _, lag = lag_reference_line(beta, psi, h)
+    about_s = -ca.mtimes(weights, lag) + torque_jig
+    about_c = ca.mtimes(weights, along)
+    cos_b, sin_b, cos_p, sin_p = ca.cos(beta), ca.sin(beta), ca.cos(psi), ca.sin(psi)
+    torque = cos_b * cos_p * about_s - cos_b * sin_p * about_c
+    flap = sin_p * about_s + cos_p * about_c
+    lag_moment = -sin_b * cos_p * about_s + sin_b * sin_p * about_c
+    phi = phi_deg * DEG
+    cos_t, sin_t = ca.cos(phi), ca.sin(phi)
+    flap_s = cos_t * flap - sin_t * lag_moment
+    lag_s = sin_t * flap + cos_t * lag_moment
+    kappa_f = flap_s / ei - cross * torque
+    kappa_l = lag_s / ei_lag
+    twist_rate = torque / gj - cross * flap_s
+    beta_rate = cos_t * kappa_f + sin_t * kappa_l
+    psi_rate = (-sin_t * kappa_f + cos_t * kappa_l) / cos_b
+
+    def trapezoid(rate: ca.SX, scale: float) -> ca.SX:
+        return -scale * h / 2 * (rate[:-1] + rate[1:])
+
+    rows = ca.vertcat(
+        trapezoid(beta_rate, 1.0), trapezoid(twist_rate, DEG_PER_RAD), trapezoid(psi_rate, 1.0)
+    )
+    unknowns = ca.vertcat(beta, phi_deg, psi)
+    return ca.Function(
+        "lag_dead_load",
+        [beta, phi_deg, psi, h, weights, torque_jig, ei, gj, cross, ei_lag],
+        [rows, ca.jacobian(rows, unknowns), torque, flap, lag_moment],
+    )
+
+
+def _lag_evaluation(inertia: InertialLoads, wing: Wing, rotations: tuple[np.ndarray, ...]) -> list:  # type: ignore[type-arg]
+    beta, phi, psi = rotations
+    ei, gj, cross = section_compliance(
+        wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
+    )
+    assert wing.in_plane_bending_stiffness is not None
+    return _lag_rows_function(wing.n_stations)(
+        beta,
+        phi,
+        psi,
+        np.diff(arc_length(wing)),
+        inertia.station_weights,
+        inertia.torque,
+        ei,
+        gj,
+        cross,
+        wing.in_plane_bending_stiffness,
+    )
+
+
+def lag_deformed_rows(
+    inertia: InertialLoads, wing: Wing, layout: Layout, x: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """A lag layout's one-g inertial rows at the state x (n_unknowns,) (the weight about the
+    deformed stations in 3D, above): (n_unknowns,) as `InertialLoads.rows`, and their
+    derivative in x (n_unknowns, n_unknowns) (zero but in the bending, torsion and lag bending
+    rows' columns of beta, phi and psi)."""
+    rotations = (x[layout.slope], x[layout.twist], x[layout.lag_rotation])
+    values, derivative = (np.asarray(v) for v in _lag_evaluation(inertia, wing, rotations)[:2])
+    rows = np.zeros(layout.n_unknowns)
+    rows_x = np.zeros((layout.n_unknowns, layout.n_unknowns))
+    where = layout.load_rows  # bending, torsion, lag bending (`Layout.load_rows`)
+    rows[where] = values.ravel()
+    columns = np.r_[
+        np.arange(layout.n_unknowns)[layout.slope],
+        np.arange(layout.n_unknowns)[layout.twist],
+        np.arange(layout.n_unknowns)[layout.lag_rotation],
+    ]
+    rows_x[np.ix_(where, columns)] = derivative
+    return rows, rows_x
+
+
+def lag_deformed_loads(
+    inertia: InertialLoads, wing: Wing, rotations: tuple[np.ndarray, ...]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For the answers: (N,) [N m] the one-g weight's flap moment M_f, torque T and lag moment
+    M_l at the lag beam's deformed stations, at the rotations (beta [rad], phi [deg], psi [rad])
+    (N,) each (as `solver.model.lag_beam.lag_internal_loads` reports the lift's)."""
+    torque, flap, lag = (
+        np.asarray(v).ravel() for v in _lag_evaluation(inertia, wing, rotations)[2:]
+    )
+    return flap, torque, lag

@@ -27,7 +27,7 @@ from solver.model.geometry import (
 )
 from solver.model.lag_beam import lag_axis_points, lag_internal_loads
 from solver.results.equilibrium import Panels, Stations, Totals
-from solver.statics.inertia import InertialLoads, deformed_loads
+from solver.statics.inertia import InertialLoads, deformed_loads, lag_deformed_loads
 from solver.statics.system import CoupledSystem
 from solver.statics.trefftz import far_field_drag
 
@@ -236,12 +236,22 @@ def equilibrium_loads(
     if inertia is not None:
         load_factor = system.load_per_q * q
         normal = load_factor * math.cos(math.radians(system.alpha))  # `CoupledSystem._loaded`
-        if layout.exact:  # the weight about the deformed stations (`solver.statics.inertia`)
+        lag_weight = None
+        if layout.lag:  # the weight about the deformed stations in 3D (`solver.statics.inertia`)
+            rotations = (x[layout.slope], x[layout.twist], x[layout.lag_rotation])
+            flap, weight_torque, lag_weight = lag_deformed_loads(inertia, wing, rotations)
+            inertia = dataclasses.replace(inertia, bending_moment=flap, torque=weight_torque)
+        elif layout.exact:  # the weight about the deformed stations (`solver.statics.inertia`)
             deformed = deformed_loads(inertia, wing, x[layout.slope])
             inertia = dataclasses.replace(
                 inertia, bending_moment=deformed.bending_moment, torque=deformed.torque
             )
         stations, totals = _with_inertia(stations, totals, inertia, load_factor, normal)
+        if lag_weight is not None and stations.lag_bending_moment is not None:
+            # The net in-plane moment: the weight's share too (reported net only).
+            stations = dataclasses.replace(
+                stations, lag_bending_moment=stations.lag_bending_moment + normal * lag_weight
+            )
     if wing.spar is not None:
         stations, totals = _with_spar(wing, wing.spar, stations, totals, safety_factor)
     return stations, panels, totals

@@ -26,7 +26,12 @@ from solver.numerics.branch_points import branch_scales
 from solver.numerics.cache import cached, model_for
 from solver.numerics.compiled import CompiledModel
 from solver.numerics.evaluation import AlphaTerms, ControlTerms, Evaluation
-from solver.statics.inertia import InertialLoads, deformed_rows, inertial_loads
+from solver.statics.inertia import (
+    InertialLoads,
+    deformed_rows,
+    inertial_loads,
+    lag_deformed_rows,
+)
 
 __all__ = ["SYMMETRIC", "CoupledSystem", "Flow"]
 
@@ -112,8 +117,6 @@ class CoupledSystem:
         `dynamic_pressure` [Pa]; unchanged without `wing.mass`."""
         if load_factor is None or self.wing.mass is None:
             return self
-        if self.layout.lag:
-            refuse_lag("the wing's weight under a load factor (wing.mass with a flight's weight)")
         return dataclasses.replace(self, load_per_q=load_factor / dynamic_pressure)
 
     @property
@@ -144,6 +147,8 @@ class CoupledSystem:
         assert inertia is not None
         if not self.layout.exact:
             return inertia.rows, None
+        if self.layout.lag:
+            return lag_deformed_rows(inertia, self.wing, self.layout, x)
         slope = self.layout.slope
         rows, rows_beta = deformed_rows(inertia, self.wing, self.layout, x[slope])
         rows_x = np.zeros((rows.size, x.size))
