@@ -13,7 +13,7 @@ import numpy as np
 
 from solver.dynamics.reduced import Equations
 from solver.errors import SolverError
-from solver.inputs.flight import FlightCondition
+from solver.inputs.flight import FlightCondition, dynamic_pressure
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
 from solver.numerics.evaluation import Evaluation
@@ -76,7 +76,12 @@ class States:
             equilibrium = self._solve(velocity)
         if isinstance(equilibrium, SolverError):
             raise equilibrium
-        system = CoupledSystem.of(self.wing, equilibrium.totals.alpha, self.options)
+        # The wing's weight as the equilibrium carries it: under the geometrically exact beam a
+        # dead load about the deformed stations, whose derivative (J1) is its geometric stiffness.
+        flight = self._flight(velocity)
+        system = CoupledSystem.of(self.wing, equilibrium.totals.alpha, self.options).with_inertia(
+            flight.inertial_load_factor, dynamic_pressure(self.density, velocity)
+        )
         return system, system.evaluate(equilibrium.state)
 
     def equations(self, velocity: float, build: Build) -> Equations:
