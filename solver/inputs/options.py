@@ -266,12 +266,13 @@ class SolverOptions:
 
 
 LAG_FIELD = "wing.in_plane_bending_stiffness"
-# Flutter takes lag about the jig only: about a lifting wing its lag mode, which only the
-# sections' profile drag would damp (not modelled), couples with torsion and bending through the
-# lift (flap-lag flutter): docs/design/lag_bending.md, step 4.
+# Flutter takes lag about the jig only: about a bent wing its tangent needs the strip loads'
+# rows on the bent wing (`solver.model.lag_beam.bent_strip_load_rows`), which the flutter's
+# linearisation does not take yet; with the jig's it finds a spurious low-speed lag instability
+# (docs/design/lag_bending.md, step 4).
 LAG_ABOUT_LOADED = (
     "flutter about a loaded equilibrium (flight alpha or lift; about the jig it is taken), "
-    "whose lag mode needs the sections' profile drag"
+    "whose bent-wing coupling of lag and torsion flutter does not take yet"
 )
 
 
