@@ -65,10 +65,11 @@ from solver.dynamics.reduced import (
 from solver.dynamics.unsteady import unsteady_aerodynamics
 from solver.errors import InvalidInput, SolverError, numerical_failures_as
 from solver.fields import integer, is_number, number, parameter, specs
-from solver.inputs.flight import check_over_airspeeds, dynamic_pressure
+from solver.inputs.flight import dynamic_pressure
 from solver.inputs.mass import MassModel
-from solver.inputs.options import LAG_ABOUT_LOADED, SolverOptions, check_lag, refuse_lag
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
+from solver.model.lag_beam import bent_strip_load_rows
 from solver.numerics.evaluation import Evaluation
 from solver.results.flutter import FlutterInfo, FlutterPoint, FlutterResult
 from solver.results.quantities import Progress
@@ -82,6 +83,11 @@ __all__ = ["FlutterOptions", "flutter"]
 # The lowest natural modes in the basis by default: the Goland wing's flutter speed moves by
 # 5e-7 from six to all 22 of an N = 12 mesh (tests/solver/test_flutter.py).
 _DEFAULT_MODES = 6
+# About a loaded equilibrium with lag: the bent wing's torsion and lag couple into modes that
+# need the jig's second lag mode (the HALE wing's tenth, 202 rad/s; bent by 8 % of its span its
+# flutter speed is 26.86 m/s on six modes, 30.97 on eight, 25.89 on ten, 25.87 on twelve, 25.85
+# on eighteen; bent by 11 %, none found on six).
+_DEFAULT_MODES_BENT_LAG = 12
 # The tracking steps: at most this fraction of the largest airspeed each.
 _STEPS = 40
 # A divergence shape inside the natural modes' span to this fraction needs no basis vector.
@@ -110,10 +116,11 @@ class FlutterOptions:
     modes: int | None = parameter(
         "-",
         "natural modes in the solution's basis, the lowest (the divergence shape's remainder "
-        "comes on top, condensed); null: six, or all of a mesh with fewer",
+        "comes on top, condensed); null: six (twelve about a loaded equilibrium of a wing "
+        "with lag bending), or all of a mesh with fewer",
         ge=1,
         le=100,
-        why="at least one mode; at most the mesh's 2 (N - 1)",
+        why="at least one mode; at most the mesh's 2 (N - 1), 3 (N - 1) with lag",
         form="integer",
         default=None,
     )
@@ -202,7 +209,8 @@ def flutter(
     vortex lattice), `flutter_options` the basis and the lag. `progress(done, total)` is called
     after each requested airspeed. About a loaded equilibrium the wing's own mass weighs
     `load_factor` g against the lift (`solver.FlightCondition`: trimmed, None is 1 g; at a given
-    alpha, None is none).
+    alpha, None is none, and a load factor a dead weight at every airspeed, each airspeed's
+    equilibrium solved on its own: a wind-tunnel model's gravity).
 
     Raises `InvalidInput` without a mass model or for invalid inputs; `ConvergenceError` when a
     root cannot be followed. Airspeeds beyond a loaded wing's fold have no roots
@@ -210,15 +218,14 @@ def flutter(
     started = time.perf_counter()
     options = options or SolverOptions()
     check_lag(wing.in_plane_bending_stiffness, options, "")
-    if wing.in_plane_bending_stiffness is not None and (alpha is not None or lift is not None):
-        refuse_lag(LAG_ABOUT_LOADED)
     settings = flutter_options or FlutterOptions()
     speeds = _check(wing, velocities, density, alpha, lift)
     beam = structure(wing, mass, in_plane_bending_stiffness=wing.in_plane_bending_stiffness)
-    count = min(_DEFAULT_MODES, beam.n_dof) if settings.modes is None else settings.modes
+    bent_lag = wing.in_plane_bending_stiffness is not None and (alpha, lift) != (None, None)
+    default = _DEFAULT_MODES_BENT_LAG if bent_lag else _DEFAULT_MODES
+    count = min(default, beam.n_dof) if settings.modes is None else settings.modes
     if count > beam.n_dof:
         raise InvalidInput("flutter.modes", f"must be at most {beam.n_dof} on this mesh")
-    check_over_airspeeds(alpha, load_factor, True)
     states = States(wing, density, alpha, lift, options, load_factor)
     with numerical_failures_as(float(speeds[0])):
         basis, build = _model(beam, states, options, settings, count, mass)
@@ -246,8 +253,10 @@ def _model(
     if options.aerodynamics != "unsteady_lattice":
         basis = _basis(beam, unsteady_aerodynamics(beam, layout, rest).stiffness(), q_div, count)
 
-        def theodorsen(system: CoupledSystem, evaluation: Evaluation) -> TheodorsenEquations:
-            about = _tangent(beam, mass, system, evaluation)
+        def theodorsen(
+            system: CoupledSystem, evaluation: Evaluation, state: np.ndarray
+        ) -> TheodorsenEquations:
+            about = _tangent(beam, mass, system, evaluation, state)
             aero = unsteady_aerodynamics(about, system.layout, evaluation)
             return TheodorsenEquations.of(about, basis, aero)
 
@@ -258,8 +267,10 @@ def _model(
     nodes = reduced_frequency_nodes(settings.max_reduced_frequency, settings.reduced_frequencies)
     wake = shed_wake(jig, nodes / semichord)
 
-    def lattice(system: CoupledSystem, evaluation: Evaluation) -> LatticeEquations:
-        about = _tangent(beam, mass, system, evaluation)
+    def lattice(
+        system: CoupledSystem, evaluation: Evaluation, state: np.ndarray
+    ) -> LatticeEquations:
+        about = _tangent(beam, mass, system, evaluation, state)
         loads = lattice_loads(about, system.layout, evaluation, jig)
         return LatticeEquations.of(about, basis, loads, wake, semichord)
 
@@ -267,18 +278,33 @@ def _model(
 
 
 def _tangent(
-    beam: Structure, mass: MassModel | None, system: CoupledSystem, evaluation: Evaluation
+    beam: Structure,
+    mass: MassModel | None,
+    system: CoupledSystem,
+    evaluation: Evaluation,
+    state: np.ndarray,
 ) -> Structure:
-    """The structure linearised about the state `evaluation` holds: under the geometrically
-    exact beam its tangent there (J0's structure rows: the bent wing's heave kinematics, its
-    stiffness and the states of the degrees of freedom; the mass and the rows' loads are the
-    linear beam's), else `beam`, the linear beam's, the same about every state."""
+    """The structure linearised about `state` (n_unknowns,), whose exact Jacobians
+    `evaluation` holds: under the geometrically exact beam its tangent there (J0's structure
+    rows: the bent wing's heave kinematics, its stiffness and the states of the degrees of
+    freedom; the mass and the rows' loads are the linear beam's, except with lag, where the
+    strip loads act on the bent wing, `solver.model.lag_beam.bent_strip_load_rows`, and a lag
+    rotation pitches a bent section, `solver.dynamics.modes.structure`), else `beam`, the
+    linear beam's, the same about every state."""
     layout = system.layout
     if not layout.exact:
         return beam
     rows = evaluation.jacobian0[layout.structure_rows, layout.structure]
+    if not layout.lag:
+        return structure(beam.wing, mass, rows=rows)
+    beta, phi, psi = state[layout.slope], state[layout.twist], state[layout.lag_rotation]
     return structure(
-        beam.wing, mass, rows=rows, in_plane_bending_stiffness=beam.wing.in_plane_bending_stiffness
+        beam.wing,
+        mass,
+        rows=rows,
+        in_plane_bending_stiffness=beam.wing.in_plane_bending_stiffness,
+        strip_load_rows=bent_strip_load_rows(beam.wing, beta, phi, psi),
+        flap_rotation=beta,
     )
 
 
@@ -373,6 +399,12 @@ def _follow(
             else:
                 unloaded.step(rest, velocity)
                 loaded = states.equations(velocity, build)
+                if velocity > 0 and len(follow.history) == 1 and follow.history[0][0] == 0:
+                    # The loaded roots start from the unloaded ones through blended equations,
+                    # not from still air: a load can move a root far at once (a bent wing's
+                    # torsion couples with its lag: the HALE wing's, 31 rad/s straight, is 17
+                    # bent by 12 % of its span).
+                    follow.history.clear()
                 current = follow.step(loaded, velocity, start=unloaded)
                 rate = loaded.divergence_rate(velocity, density)
         except SolverError as error:

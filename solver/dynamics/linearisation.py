@@ -26,8 +26,9 @@ from solver.statics.system import CoupledSystem
 
 __all__ = ["Build", "States"]
 
-# The equations of motion on the flutter basis about a state: its system and exact Jacobians.
-Build = Callable[[CoupledSystem, Evaluation], Equations]
+# The equations of motion on the flutter basis about a state: its system, its exact Jacobians
+# and the state x itself (n_unknowns,).
+Build = Callable[[CoupledSystem, Evaluation, np.ndarray], Equations]
 
 
 class States:
@@ -58,6 +59,14 @@ class States:
         if self.about == "jig":
             return
         positive = [float(v) for v in speeds if v > 0]
+        if self.about == "alpha" and self.load_factor is not None:
+            # The weight at a given alpha (a wind tunnel's gravity, a dead tip load) does not
+            # grow with the dynamic pressure, which the sweep's continuation follows: each
+            # airspeed's equilibrium is solved on its own (past a fold there is none: an error
+            # at those speeds, and the p-k roots' zero-frequency root shows the divergence).
+            for velocity in positive:
+                self._solve(velocity)
+            return
         result = airspeed_sweep(self.wing, positive, self._flight(None), self.options)
         for point in result.points:
             self.equilibria[point.velocity] = point.equilibrium or point.error  # type: ignore[assignment]
@@ -84,14 +93,23 @@ class States:
         )
         return system, system.evaluate(equilibrium.state)
 
+    def state(self, velocity: float) -> np.ndarray:
+        """(n_unknowns,) the state x linearised about at `velocity` [m/s]: zero about the jig,
+        else the equilibrium's (`evaluation` solves it first)."""
+        equilibrium = None if self.about == "jig" else self.equilibria.get(velocity)
+        if velocity == 0 or not isinstance(equilibrium, Equilibrium):
+            return np.zeros(self.rest.layout.n_unknowns)
+        return np.asarray(equilibrium.state, dtype=float)
+
     def equations(self, velocity: float, build: Build) -> Equations:
         """The equations on the basis about the state at `velocity` (about the jig: one state
         for every airspeed, built once)."""
         if self.about == "jig" or velocity == 0:
             if self.rest_equations is None:
-                self.rest_equations = build(*self.evaluation(0.0))
+                self.rest_equations = build(*self.evaluation(0.0), self.state(0.0))
             return self.rest_equations
-        return build(*self.evaluation(velocity))
+        system, evaluation = self.evaluation(velocity)
+        return build(system, evaluation, self.state(velocity))
 
     def _flight(self, velocity: float | None) -> FlightCondition:
         """The flight the loaded wing flies at `velocity` [m/s] (None: at each of a sweep's)."""

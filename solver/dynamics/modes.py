@@ -77,6 +77,16 @@ DEG_PER_RAD = 180.0 / math.pi
 _REAL_TOLERANCE = 1e-6
 
 
+def _lag_pitch(flap_rotation: np.ndarray, sweep: float) -> np.ndarray:
+    """(N,) [-]: the streamwise pitch [rad] per unit lag rotation psi [rad] of sections bent by
+    `flap_rotation` beta (N,) [rad] on an axis swept by `sweep` [rad]: a_z, the deformed axis's
+    normal component in the y-z plane, as the lattice turns its sections
+    (`solver.model.geometry.lattice`; sin(beta) unswept). A section yawed in a plane tilted by
+    the bending meets the stream at an angle: the dihedral effect, local."""
+    beta = np.asarray(flap_rotation, dtype=float)
+    return np.sin(beta) / np.hypot(np.cos(beta) * math.cos(sweep), np.sin(beta))
+
+
 def _outboard(strip_values: np.ndarray) -> np.ndarray:
     """(N-1, c) per strip -> (N, c): row i sums strips j >= i (zero at the tip)."""
     sums = np.cumsum(strip_values[::-1], axis=0)[::-1]
@@ -98,7 +108,8 @@ class Structure:
     about the axis normal to the EA on each strip (a streamwise moment on a swept wing has one);
     lag: whether the beam bends in the wing's plane (w ends with v); lag_couple_to_strip_loads:
     (n, N - 1) with lag, the equivalent strip loads of an in-plane couple [N m] about the normal
-    n on each strip (None without lag).
+    n on each strip (None without lag); flap_rotation: (N,) [rad] with lag, the bent state's
+    bending rotation beta the structure vibrates about (None: the jig's, zero).
     """
 
     wing: Wing
@@ -111,6 +122,7 @@ class Structure:
     couple_to_strip_loads: np.ndarray
     lag: bool = False
     lag_couple_to_strip_loads: np.ndarray | None = None
+    flap_rotation: np.ndarray | None = None
 
     @property
     def n_strips(self) -> int:
@@ -128,12 +140,15 @@ class Structure:
     @cached_property
     def section_motion(self) -> tuple[np.ndarray, np.ndarray]:
         """(N, n) each: the stations' heave [m] and streamwise pitch [rad] of w (the flow's
-        twist phi cos(sweep) - u' sin(sweep), as the static model turns its sections)."""
+        twist phi cos(sweep) - u' sin(sweep), as the static model turns its sections; about a
+        bent state with lag, plus a_z psi: `_lag_pitch`)."""
         n = self.wing.n_stations
         z = self.states
         sweep = self.wing.sweep * DEG
         heave = z[:n]
         pitch = math.cos(sweep) * DEG * z[2 * n : 3 * n] - math.sin(sweep) * z[n : 2 * n]
+        if self.lag and self.flap_rotation is not None:
+            pitch = pitch + _lag_pitch(self.flap_rotation, sweep)[:, None] * z[4 * n : 5 * n]
         return heave, pitch
 
     def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
@@ -200,6 +215,7 @@ def structure(
     rows: np.ndarray | None = None,
     in_plane_bending_stiffness: np.ndarray | None = None,
     strip_load_rows: np.ndarray | None = None,
+    flap_rotation: np.ndarray | None = None,
 ) -> Structure:
     """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
     Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
@@ -207,7 +223,11 @@ def structure(
     [N m^2], EI_lag: the beam bends in the wing's plane too (module docstring; `rows` then
     (5N, 5N)); `strip_load_rows` (n, n), the load rows of unit strip loads to take instead of
     the jig's (about a bent state, `solver.model.lag_beam.bent_strip_load_rows`; concentrated
-    masses' stay the jig's).
+    masses' stay the jig's); `flap_rotation` (N,) [rad], with lag, the bending rotation beta of
+    that state: a lag rotation psi turns a bent section about its own tangent too (t . n =
+    sin(beta)), so the sections' and the masses' rotary inertia is of phi + sin(beta) psi
+    (R = R_n(psi) R_ec(beta) R_es(phi)'s angular velocity along t), and the flow's pitch is
+    `Structure.section_motion`'s.
 
     Raises `InvalidInput` without a mass model (vibration needs one) or with sections that
     have no mass or no inertia."""
@@ -246,6 +266,12 @@ def structure(
     mean[np.arange(m), np.arange(m)] = 0.5
     mean[np.arange(1, m), np.arange(m - 1)] = 0.5
     strip_motion = np.kron(np.eye(blocks), mean)
+    states = beam.states(flexibility)
+    turn = None  # (N, n) [rad] the sections' turn about their tangents by the lag, of w
+    if lag and flap_rotation is not None:
+        n = wing.n_stations
+        turn = np.sin(np.asarray(flap_rotation, dtype=float))[:, None] * states[4 * n : 5 * n]
+        strip_motion[m : 2 * m] += (turn[:-1] + turn[1:]) / 2
     mass_matrix = strips @ strip_motion
     kinetic = strip_motion.T @ strips @ strip_motion
     for item in mass.concentrated:
@@ -261,6 +287,8 @@ def structure(
         motion = np.zeros((blocks, blocks * m))
         for k in range(blocks):
             motion[k, k * m + item.station - 1] = 1.0
+        if turn is not None:
+            motion[1] += turn[item.station]
         mass_matrix = mass_matrix + rows_to_strip_loads @ beam.station_load_rows(item.station) @ (
             block @ motion
         )
@@ -272,11 +300,12 @@ def structure(
         stiffness=stiffness,
         mass=mass_matrix,
         kinetic_mass=kinetic,
-        states=beam.states(flexibility),
+        states=states,
         rows_to_strip_loads=rows_to_strip_loads,
         couple_to_strip_loads=rows_to_strip_loads @ beam.couple_load_rows(),
         lag=lag,
         lag_couple_to_strip_loads=lag_couples,
+        flap_rotation=None if flap_rotation is None else np.asarray(flap_rotation, dtype=float),
     )
 
 

@@ -31,8 +31,11 @@ __all__ = [
     "track",
 ]
 
-# A restart from another follower's roots blends the equations in this many steps.
+# A restart from another follower's roots blends the equations in this many steps, a step
+# halved (down to 1/_FINEST of the way) where two roots would otherwise fall on one, and
+# doubled back after.
 _BLEND_STEPS = 4
+_FINEST = 1024
 # The secant's slope d(Im s - omega)/d omega must fall below minus this to be used.
 _FLAT = 0.01
 
@@ -141,19 +144,46 @@ class Follower:
         else:
             assert start is not None and start.history
             base = start.history[-1]
-            roots, before = base[1], start.equations
-            for step in range(1, _BLEND_STEPS + 1):
-                blended = before.blend(equations, step / _BLEND_STEPS)  # type: ignore[arg-type]
-                roots = self._track(blended, roots, velocity)
+            roots = self._blend(start.equations, equations, base[1], velocity)
         self.history.append((velocity, roots))
         del self.history[:-3]
         self.equations = equations
+        return roots
+
+    def _blend(
+        self, before: Equations, after: Equations, roots: np.ndarray, velocity: float
+    ) -> np.ndarray:
+        """The roots of `after` at `velocity`, followed from `roots`, those of `before`, through
+        the equations blended between them. A load can split a pair of near roots fast (the
+        bent wing's torsion and lag) and move roots of other modes across each other: each
+        root starts on the line through its last two, and a step on which two roots would
+        become one is halved."""
+        done, step = 0.0, 1.0 / _BLEND_STEPS
+        rate = np.zeros_like(roots)  # d roots / d blend
+        while done < 1.0:
+            share = min(1.0, done + step)
+            blended = before.blend(after, share)  # type: ignore[arg-type]
+            found = self._track(blended, roots + rate * (share - done), velocity)
+            if _merged(found, roots, self.scale) and step > 1.0 / _FINEST:
+                step /= 2
+                continue
+            rate, roots, done = (found - roots) / (share - done), found, share
+            step = min(2 * step, 1.0 / _BLEND_STEPS)
         return roots
 
     def _track(self, equations: Equations, guesses: np.ndarray, velocity: float) -> np.ndarray:
         roots, spent = track(equations, guesses, velocity, self.density, self.tracking, self.scale)
         self.solves += spent
         return roots
+
+
+def _merged(found: np.ndarray, before: np.ndarray, scale: float) -> bool:
+    """Whether two of the roots `found` are one (to 1e-6 of their size, or of `scale` [rad/s]
+    below it) that were two `before`."""
+    size = np.maximum(np.abs(found), scale)[:, None]
+    same = np.abs(found[:, None] - found[None, :]) <= 1e-6 * size
+    were = np.abs(before[:, None] - before[None, :]) <= 1e-6 * size
+    return bool(np.any(same & ~were & ~np.eye(found.shape[0], dtype=bool)))
 
 
 def extrapolate(history: list[tuple[float, np.ndarray]], velocity: float) -> np.ndarray:

@@ -15,7 +15,6 @@ from solver.errors import InvalidInput
 from solver.fields import parameter, spec_of
 
 __all__ = [
-    "LAG_ABOUT_LOADED",
     "LAG_FIELD",
     "check_lag",
     "refuse_lag",
@@ -266,14 +265,6 @@ class SolverOptions:
 
 
 LAG_FIELD = "wing.in_plane_bending_stiffness"
-# Flutter takes lag about the jig only: about a bent wing its tangent needs the strip loads'
-# rows on the bent wing (`solver.model.lag_beam.bent_strip_load_rows`), which the flutter's
-# linearisation does not take yet; with the jig's it finds a spurious low-speed lag instability
-# (docs/design/lag_bending.md, step 4).
-LAG_ABOUT_LOADED = (
-    "flutter about a loaded equilibrium (flight alpha or lift; about the jig it is taken), "
-    "whose bent-wing coupling of lag and torsion flutter does not take yet"
-)
 
 
 def refuse_lag(what: str) -> None:

@@ -8,8 +8,8 @@ from functools import cached_property
 from solver import fields
 from solver.dynamics.flutter import FlutterOptions, flutter
 from solver.fields import parameter
-from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange, check_over_airspeeds
-from solver.inputs.options import LAG_ABOUT_LOADED, SolverOptions, check_lag, refuse_lag
+from solver.inputs.flight import FLIGHT_RULE, FlightCondition, VelocityRange
+from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing, require_mass
 from solver.operations.common import airspeeds_of, check_airspeeds, check_meshed
 from solver.results.flutter import FlutterResult
@@ -30,7 +30,9 @@ class FlutterInput:
     flight: FlightCondition = parameter(
         "",
         f"the flight condition at every airspeed: {FLIGHT_RULE}; its density is the air's in "
-        "the unsteady loads, its alpha or lift the equilibrium linearised about",
+        "the unsteady loads, its alpha or lift the equilibrium linearised about (at an alpha "
+        "a load_factor weighs the wing's mass as a dead load at every airspeed: a wind "
+        "tunnel's gravity)",
         form="nested",
         given=FlightCondition,
         without=FlightCondition.AIRSPEEDS,
@@ -58,13 +60,8 @@ class FlutterInput:
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
         check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
-        if self.loaded and self.wing.in_plane_bending_stiffness is not None:
-            refuse_lag(LAG_ABOUT_LOADED)
         require_mass(self.wing, _VIBRATION)
         check_airspeeds(self.velocities)
-        check_over_airspeeds(
-            self.flight.alpha if self.loaded else None, self.flight.load_factor, True
-        )
 
     @property
     def airspeeds(self) -> tuple[float, ...]:
