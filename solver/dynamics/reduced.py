@@ -60,6 +60,16 @@ class Basis:
     vacuum: np.ndarray  # (modes,) [rad/s] the natural modes' frequencies in vacuum
     divergence_pressure: float | None  # [Pa] of the unloaded wing
     condensed: bool  # the last column is the divergence shape's remainder
+    structural_damping: float = 0.0  # [-] zeta, each natural mode's fraction of critical
+
+    def structural(self, mass: np.ndarray) -> np.ndarray:
+        """(r, r) the structure's own damping on the basis with the reduced `mass` (r, r):
+        viscous, 2 zeta omega_i m_ii on each natural mode i (Nastran's modal damping, TABDMP1
+        of type CRIT), none on the condensed remainder (it has no frequency of its own)."""
+        modes = self.vacuum.shape[0]
+        diagonal = np.zeros(mass.shape[0])
+        diagonal[:modes] = 2 * self.structural_damping * self.vacuum * np.diag(mass)[:modes]
+        return np.diag(diagonal)
 
 
 @dataclass(frozen=True)
@@ -82,6 +92,7 @@ class TheodorsenEquations:
     apparent_damping: np.ndarray  # (r, r)
     semichord: np.ndarray  # (groups,) [m]
     condensed: bool  # the last degree of freedom is condensed statically (`condense`)
+    structural: np.ndarray  # (r, r) the structure's own damping (`Basis.structural`)
 
     @classmethod
     def of(cls, beam: Structure, basis: Basis, aero: UnsteadyAerodynamics) -> TheodorsenEquations:
@@ -90,9 +101,10 @@ class TheodorsenEquations:
         deformation, motion = aero.deformation @ right, aero.motion @ right
         semichord, group = np.unique(aero.semichord, return_inverse=True)
         members = [np.flatnonzero(group == g) for g in range(semichord.size)]
+        mass = left @ beam.mass @ right
         return cls(
             stiffness=left @ beam.stiffness @ right,
-            mass=left @ beam.mass @ right,
+            mass=mass,
             geometric=left @ aero.geometric @ right,
             lagged_deformation=np.array([loads[:, p] @ deformation[p] for p in members]),
             lagged_motion=np.array([loads[:, p] @ motion[p] for p in members]),
@@ -100,6 +112,7 @@ class TheodorsenEquations:
             apparent_damping=left @ aero.apparent_damping @ right,
             semichord=semichord,
             condensed=basis.condensed,
+            structural=basis.structural(mass),
         )
 
     def divergence_rate(self, velocity: float, density: float) -> float | None:
@@ -112,7 +125,7 @@ class TheodorsenEquations:
         # No lag: real coefficients, a real eigenvalue problem (half the work of a complex one).
         stiffness = self.stiffness - q * (self.geometric + self.lagged_deformation.sum(axis=0).real)
         damping = -(q / velocity) * self.lagged_motion.sum(axis=0).real
-        damping = damping - density * velocity * self.apparent_damping
+        damping = damping - density * velocity * self.apparent_damping + self.structural
         mass = self.mass - density * self.apparent_mass
         return _largest_real_root(mass, damping, stiffness, self.condensed)
 
@@ -138,7 +151,9 @@ class TheodorsenEquations:
             lag = np.ones((t, self.semichord.shape[0]), dtype=complex)
         circulatory = np.tensordot(lag, self.lagged_deformation, axes=1)  # (t, r, r)
         stiffness = self.stiffness - q * (self.geometric + circulatory)
-        damping = np.broadcast_to(-density * velocity * self.apparent_damping, (t, r, r))
+        damping = np.broadcast_to(
+            self.structural - density * velocity * self.apparent_damping, (t, r, r)
+        )
         if velocity > 0:
             damping = damping - (q / velocity) * np.tensordot(lag, self.lagged_motion, axes=1)
         mass = np.broadcast_to(self.mass - density * self.apparent_mass, (t, r, r))
@@ -181,6 +196,7 @@ class LatticeEquations:
     reduced: np.ndarray  # (K,) [-] the last one infinite
     semichord: float  # [m] b of the reduced frequency
     condensed: bool
+    structural: np.ndarray  # (r, r) the structure's own damping (`Basis.structural`)
 
     @classmethod
     def of(
@@ -194,9 +210,10 @@ class LatticeEquations:
         """The equations of `loads` with `wake` tabulated at kappa = k / b (`semichord` b)."""
         left, right = basis.left, basis.right
         modal = loads.modal(wake, right, left)
+        mass = left.T @ beam.mass @ right
         return cls(
             stiffness=left.T @ beam.stiffness @ right,
-            mass=left.T @ beam.mass @ right,
+            mass=mass,
             geometric=left.T @ loads.geometric @ right,
             lattice_stiffness=modal.stiffness,
             lattice_damping=modal.damping,
@@ -204,6 +221,7 @@ class LatticeEquations:
             reduced=wake.kappa * semichord,
             semichord=semichord,
             condensed=basis.condensed,
+            structural=basis.structural(mass),
         )
 
     @cached_property
@@ -234,7 +252,7 @@ class LatticeEquations:
             return None
         q = dynamic_pressure(density, velocity)
         stiffness = self.stiffness - q * (self.geometric + self.lattice_stiffness[0].real)
-        damping = -(q / velocity) * self.lattice_damping[0].real
+        damping = self.structural - (q / velocity) * self.lattice_damping[0].real
         mass = self.mass - 0.5 * density * self.lattice_inertia[0].real
         return _largest_real_root(mass, damping, stiffness, self.condensed)
 
@@ -271,6 +289,7 @@ class LatticeEquations:
         a0, a1, a2 = self.aerodynamics(reduced)
         stiffness = self.stiffness - q * (self.geometric + a0)
         damping = -(q / velocity) * a1 if velocity > 0 else np.zeros_like(a1)
+        damping = damping + self.structural
         mass = self.mass - 0.5 * density * a2
         if self.condensed:
             mass, damping, stiffness = condense(mass, damping, stiffness)
