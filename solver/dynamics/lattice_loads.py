@@ -116,7 +116,7 @@ def lattice_loads(
 ) -> LatticeLoads:
     """The unsteady lattice's operators about the state whose exact Jacobians `evaluation`
     holds (J0, J1 of the static lattice on `layout`), with the jig's `panels`."""
-    z_of_w = structure.states  # (3N, n)
+    z_of_w = structure.states  # (3N, n); (5N, n) with lag
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
     tangency, circulation = layout.tangency_rows, layout.circulation
     load_rows = j1[layout.load_rows]

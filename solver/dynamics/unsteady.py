@@ -148,7 +148,7 @@ def unsteady_aerodynamics(
     moves no collocation point across the plane and carries no section loads; about the
     unloaded wing nothing couples it (flutter takes lag about the jig only)."""
     wing = structure.wing
-    z_of_w = structure.states  # (3N, n)
+    z_of_w = structure.states  # (3N, n); (5N, n) with lag
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
     tangency, circulation = layout.tangency_rows, layout.circulation
     load_rows = j1[layout.load_rows]

@@ -48,6 +48,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -297,7 +298,11 @@ def _lag_rows_function(n: int) -> ca.Function:
     )
 
 
-def _lag_evaluation(inertia: InertialLoads, wing: Wing, rotations: tuple[np.ndarray, ...]) -> list:  # type: ignore[type-arg]
+def _lag_evaluation(
+    inertia: InertialLoads, wing: Wing, rotations: tuple[np.ndarray, ...]
+) -> list[Any]:
+    """`_lag_rows_function`'s outputs (rows, their Jacobian, torque, flap and lag moments, as
+    CasADi DMs) for `wing` at the rotations (beta [rad], phi [deg], psi [rad]), each (N,)."""
     beta, phi, psi = rotations
     ei, gj, cross = section_compliance(
         wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
