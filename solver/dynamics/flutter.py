@@ -412,6 +412,7 @@ def _follow(
     rest = states.equations(0.0, build)
     follow = Follower(rest, density, tracking, scale)
     unloaded = Follower(rest, density, tracking, scale)
+    loaded_started = False
     for velocity in (float(v) for v in grid):
         reason, rate = None, None
         try:
@@ -421,12 +422,13 @@ def _follow(
             else:
                 unloaded.step(rest, velocity)
                 loaded = states.equations(velocity, build)
-                if velocity > 0 and len(follow.history) == 1 and follow.history[0][0] == 0:
+                if velocity > 0 and not loaded_started:
                     # The loaded roots start from the unloaded ones through blended equations,
                     # not from still air: a load can move a root far at once (a bent wing's
                     # torsion couples with its lag: the HALE wing's, 31 rad/s straight, is 17
                     # bent by 12 % of its span).
                     follow.history.clear()
+                    loaded_started = True
                 current = follow.step(loaded, velocity, start=unloaded)
                 rate = loaded.divergence_rate(velocity, density)
         except SolverError as error:

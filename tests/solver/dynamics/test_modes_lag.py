@@ -217,3 +217,25 @@ def test_ml6_about_the_jig_the_bent_strip_rows_are_the_jigs():
     ).strip_load_rows()
     zero = np.zeros(n)
     assert np.array_equal(bent_strip_load_rows(wing, zero, zero, zero), jig)
+
+
+def test_ml7_a_lag_rotation_pitches_a_bent_section_by_sin_beta():
+    """About a state bent by beta, a section's lag rotation psi turns it about its own tangent
+    by sin(beta) psi (R = R_n(psi) R_ec(beta) R_es(phi): t . n = sin(beta)): the flow's pitch of
+    every w (unswept) is phi + sin(beta) psi (to 1e-12 of its largest), and at beta = 0 the
+    structure is the jig's to the bit (its mass and pitch)."""
+    n = 9
+    wing = lagging(solver.Wing.create(np.linspace(0, 6, n), 1.0, 0.4, EI, 3e5))
+    mass = MassModel.create(n, 2.0, 0.45, 0.3)
+    lag = wing.in_plane_bending_stiffness
+    jig = structure(wing, mass, in_plane_bending_stiffness=lag)
+    straight = structure(wing, mass, in_plane_bending_stiffness=lag, flap_rotation=np.zeros(n))
+    assert np.array_equal(straight.mass, jig.mass)
+    assert np.array_equal(straight.section_motion[1], jig.section_motion[1])
+    beta = np.linspace(0.0, 0.6, n)
+    bent = structure(wing, mass, in_plane_bending_stiffness=lag, flap_rotation=beta)
+    psi = bent.states[4 * n : 5 * n]
+    pitch = jig.section_motion[1] + np.sin(beta)[:, None] * psi
+    scale = np.abs(pitch).max()
+    np.testing.assert_allclose(bent.section_motion[1], pitch, rtol=0, atol=1e-12 * scale)
+    assert not np.allclose(bent.mass, jig.mass)  # the rotary inertia of the turn
