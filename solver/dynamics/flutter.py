@@ -85,7 +85,7 @@ __all__ = ["FlutterOptions", "flutter"]
 _DEFAULT_MODES = 6
 # About a loaded equilibrium with lag: the bent wing's torsion and lag couple into modes that
 # need the jig's second lag mode (the HALE wing's tenth, 202 rad/s; bent by 8 % of its span its
-# flutter speed is 26.86 m/s on six modes, 30.97 on eight, 25.89 on ten, 25.87 on twelve, 25.85
+# flutter speed is 27.03 m/s on six modes, 31.06 on eight, 25.95 on ten, 25.93 on twelve, 25.91
 # on eighteen; bent by 11 %, none found on six).
 _DEFAULT_MODES_BENT_LAG = 12
 # The tracking steps: at most this fraction of the largest airspeed each.

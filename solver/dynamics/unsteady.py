@@ -144,9 +144,10 @@ def unsteady_aerodynamics(
 ) -> UnsteadyAerodynamics:
     """The loads of small oscillations about the state whose exact Jacobians `evaluation`
     holds (J0, J1 of the static model on `layout`, aerodynamics as the layout says). With lag
-    (a structure bending in the wing's plane, `solver.dynamics.modes`) the in-plane motion
-    moves no collocation point across the plane and carries no section loads; about the
-    unloaded wing nothing couples it (flutter takes lag about the jig only)."""
+    (a structure bending in the wing's plane, `solver.dynamics.modes`) a lag displacement
+    moves no collocation point across the plane and carries no non-circulatory load; about a
+    bent state a lag rotation pitches the section (`_upwash`), and the static model's
+    Jacobian couples the rest."""
     wing = structure.wing
     z_of_w = structure.states  # (3N, n); (5N, n) with lag
     j0, j1 = evaluation.jacobian0, evaluation.jacobian1
@@ -155,7 +156,7 @@ def unsteady_aerodynamics(
     solve = np.linalg.solve
     influence = j0[tangency, circulation]
     deformation = -solve(influence, j0[tangency, layout.structure] @ z_of_w)
-    motion = -solve(influence, _upwash(structure, layout, z_of_w.shape[0]) @ z_of_w)
+    motion = -solve(influence, _upwash(structure, layout))
     geometric = structure.strip_loads_of(load_rows[:, layout.structure] @ z_of_w)
     circulation_loads = structure.strip_loads_of(load_rows[:, circulation])
     mass, damping = _apparent_loads(structure)
@@ -171,24 +172,18 @@ def unsteady_aerodynamics(
     )
 
 
-def _upwash(structure: Structure, layout: Layout, size: int) -> np.ndarray:
-    """(M, size): N of the module docstring on z (`size` its length, 3N, or 5N with lag),
-    each panel's upwash per unit s / V: minus the vertical displacement of its strip's
-    three-quarter-chord line (the mean of its two stations', at (3/4 - x_ea) c aft of the
-    elastic axis). A motion in the wing's plane (lag) moves no collocation point across it."""
+def _upwash(structure: Structure, layout: Layout) -> np.ndarray:
+    """(M, n): N of the module docstring on w, each panel's upwash per unit s / V: minus the
+    vertical displacement of its strip's three-quarter-chord line (the mean of its two
+    stations', at (3/4 - x_ea) c aft of the elastic axis, turned about it by the section's
+    streamwise pitch, `Structure.section_motion`). A lag displacement moves no collocation
+    point across the wing's plane; a lag rotation of a bent section turns its chord across
+    the bent surface, a pitch a_z psi (`solver.dynamics.modes`), as the unsteady lattice's
+    `solver.dynamics.lattice_loads` takes it too."""
     wing = structure.wing
-    n = wing.n_stations
-    sweep = wing.sweep * DEG
-    aft = (0.75 - wing.elastic_axis) * wing.chord  # [m] three-quarter chord behind the axis
-    # Vertical displacement of each station's three-quarter-chord point, per unit z.
-    point = np.hstack(
-        [
-            np.eye(n),
-            np.diag(aft * math.sin(sweep)),
-            -np.diag(aft * math.cos(sweep) * DEG),
-            np.zeros((n, size - 3 * n)),
-        ]
-    )
+    heave, pitch = structure.section_motion  # (N, n)
+    aft = ((0.75 - wing.elastic_axis) * wing.chord)[:, None]  # [m] three-quarter chord behind
+    point = heave - aft * pitch
     strips = -(point[:-1] + point[1:]) / 2
     return np.repeat(strips, layout.chordwise, axis=0)
 

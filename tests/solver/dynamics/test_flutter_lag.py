@@ -70,8 +70,8 @@ HALE_LAG = 4e6  # [N m^2]
 def test_fl2_the_hale_wings_flutter_falls_with_its_root_angle_as_published(alpha: float):
     """Under its weight (1 g: a given alpha with a load factor, each airspeed's equilibrium
     solved on its own) the wing lifts its tip by 0.97 m at 1 deg, 1.83 m at 2.9 deg at
-    flutter; its torsion, coupled with lag on the bent wing, falls: flutter at 28.39 and 22.98
-    m/s (-0.04 %, +2.2 %; +0.0 % and +0.2 % at N = 25), the frequency falling with it (20.2,
+    flutter; its torsion, coupled with lag on the bent wing, falls: flutter at 28.39 and 23.00
+    m/s (-0.02 %, +2.3 %), the frequency falling with it (20.2,
     17.4 rad/s). Held to 4 %: the reading and the aerodynamics (Theodorsen's strips against
     Peters' finite states; our bent torsion frequencies +1 to +7 % above AeroBeams',
     test_modes_lag ml5). The planar exact beam, rigid in its plane, finds 36.0 and 39.1 m/s
@@ -103,8 +103,8 @@ def _tip_loaded_hale(tip: float) -> solver.Wing:
 @pytest.mark.parametrize("tip", list(PATIL_AGAINST_TIP), ids=lambda t: f"tip_{t:g}m")
 def test_fl3_the_hale_wings_flutter_falls_with_its_tip_deflection_as_published(tip: float):
     """At zero angle with a dead tip force (the wing's own mass vibrates, the force's store
-    weighs nothing in motion): flutter at 32.53, 31.31, 25.87 m/s (+1.2, +2.0, +6.1 %; on 18
-    modes 25.85, at N = 33 25.88), falling with the torsion frequency as the published but a
+    weighs nothing in motion): flutter at 32.53, 31.32, 25.93 m/s (+1.2, +2.0, +6.4 %; on 18
+    modes 25.91), falling with the torsion frequency as the published but a
     little less (our bent torsion +1 to +7 % above AeroBeams', test_modes_lag ml5). Held to 4 %
     to half a metre, 8 % beyond. On the default six modes at 1.31 m: 26.86 (the bent modes
     need the jig's second lag mode: twelve by default with lag about a loaded state)."""

@@ -127,3 +127,42 @@ def test_the_lattice_lifts_less_than_strips_by_the_wings_3d_loss():
         ratios.append(_pitch_lift(wing, "lattice") / _pitch_lift(wing, "strip"))
     assert ratios == pytest.approx([0.694, 0.879, 0.955], abs=0.005)
     assert ratios[0] < ratios[1] < ratios[2] < 1
+
+
+def test_a_lag_rotation_of_a_bent_section_is_upwash_at_its_three_quarter_chord():
+    """A section bent up by beta (about the chord e_c) and turned in the wing's plane by psi
+    (about the jig's normal n) moves its three-quarter-chord point r = x e_c, x aft of the
+    elastic axis, by psi n x r = x psi e_s: across the bent surface (normal -sin(beta) e_s +
+    cos(beta) n) by -x sin(beta) psi, the vertical displacement whose rate is upwash. The
+    motion's upwash of every w is the straight wing's plus that, to 1e-12 (3D cross products,
+    unswept wing); a lag displacement alone moves no point across the plane."""
+    from solver.dynamics.unsteady import _upwash
+    from solver.model.layout import Layout
+    from tests.solver.dynamics.test_modes_lag import lagging
+
+    n = 9
+    wing = lagging(solver.Wing.create(np.linspace(0, 6, n), 1.0, 0.4, 4e5, 3e5))
+    mass = MassModel.create(n, 2.0, 0.45, 0.3)
+    lag = wing.in_plane_bending_stiffness
+    layout = Layout(n, 2)
+    straight = structure(wing, mass, in_plane_bending_stiffness=lag)
+    beta = np.linspace(0.0, 0.6, n)
+    bent = structure(wing, mass, in_plane_bending_stiffness=lag, flap_rotation=beta)
+    aft = (0.75 - wing.elastic_axis) * wing.chord  # [m]
+    e_s, e_c, normal = np.eye(3)[1], np.eye(3)[0], np.eye(3)[2]
+    across = np.array(
+        [
+            np.dot(-np.sin(b) * e_s + np.cos(b) * normal, np.cross(normal, x * e_c))
+            for b, x in zip(beta, aft, strict=True)
+        ]
+    )  # [m] per unit psi
+    psi = bent.states[4 * n : 5 * n]  # (N, n)
+    displacement = across[:, None] * psi
+    expected = -np.repeat((displacement[:-1] + displacement[1:]) / 2, 2, axis=0)
+    difference = _upwash(bent, layout) - _upwash(straight, layout)
+    scale = np.abs(_upwash(bent, layout)).max()
+    np.testing.assert_allclose(difference, expected, rtol=0, atol=1e-12 * scale)
+    assert np.abs(expected).max() > 0.01 * scale  # the term is there to be seen
+    # The lag degrees of freedom (w's last N - 1) of the straight wing: no upwash at all.
+    assert not np.any(_upwash(straight, layout)[:, 2 * (n - 1) :])
+    assert np.any(_upwash(bent, layout)[:, 2 * (n - 1) :])
