@@ -138,11 +138,6 @@ def _motion(structure: Structure, layout: Layout) -> np.ndarray:
     """(M, n) N of the module docstring: minus the vertical displacement of each panel's
     collocation point (its strip's mean of its two stations' sections, at its chordwise place,
     turned about the elastic axis by the streamwise pitch) per unit w."""
-    wing, k = structure.wing, layout.chordwise
-    heave, pitch = structure.section_motion  # (N, n)
-    nodes = chordwise_nodes(k)
+    nodes = chordwise_nodes(layout.chordwise)
     place = nodes[:-1] + 0.75 * np.diff(nodes)  # (k,) chord fraction of the collocation points
-    aft = (place[None, :] - wing.elastic_axis[:, None]) * wing.chord[:, None]  # (N, k) [m]
-    station = heave[:, None, :] - aft[:, :, None] * pitch[:, None, :]  # (N, k, n)
-    strips = (station[:-1] + station[1:]) / 2  # (N - 1, k, n)
-    return -strips.reshape(layout.n_panels, -1)
+    return -structure.strip_points_motion(place).reshape(layout.n_panels, -1)

@@ -151,6 +151,16 @@ class Structure:
             pitch = pitch + _lag_pitch(self.flap_rotation, sweep)[:, None] * z[4 * n : 5 * n]
         return heave, pitch
 
+    def strip_points_motion(self, place: np.ndarray) -> np.ndarray:
+        """(N - 1, k, n) [m] per unit w: the vertical displacement of the points at chord
+        fractions `place` (k,) of each strip (the mean of its two stations' sections, each turned
+        about the elastic axis by its streamwise pitch, `section_motion`)."""
+        heave, pitch = self.section_motion
+        wing = self.wing
+        aft = (place[None, :] - wing.elastic_axis[:, None]) * wing.chord[:, None]  # (N, k) [m]
+        station = heave[:, None, :] - aft[:, :, None] * pitch[:, None, :]  # (N, k, n)
+        return (station[:-1] + station[1:]) / 2
+
     def point_loads(self, points: np.ndarray, forces: np.ndarray, strips: np.ndarray) -> np.ndarray:
         """(n, P) the equivalent strip loads of the forces (P, 3) [N] at the points (P, 3) [m],
         both in geometry axes (the lattice's: a dihedral wing's plane turned about x), each on

@@ -180,12 +180,8 @@ def _upwash(structure: Structure, layout: Layout) -> np.ndarray:
     point across the wing's plane; a lag rotation of a bent section turns its chord across
     the bent surface, a pitch a_z psi (`solver.dynamics.modes`), as the unsteady lattice's
     `solver.dynamics.lattice_loads` takes it too."""
-    wing = structure.wing
-    heave, pitch = structure.section_motion  # (N, n)
-    aft = ((0.75 - wing.elastic_axis) * wing.chord)[:, None]  # [m] three-quarter chord behind
-    point = heave - aft * pitch
-    strips = -(point[:-1] + point[1:]) / 2
-    return np.repeat(strips, layout.chordwise, axis=0)
+    strips = structure.strip_points_motion(np.array([0.75]))[:, 0]  # (N - 1, n)
+    return -np.repeat(strips, layout.chordwise, axis=0)
 
 
 def _apparent_loads(structure: Structure) -> tuple[np.ndarray, np.ndarray]:
