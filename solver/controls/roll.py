@@ -47,7 +47,9 @@ from solver.errors import ConvergenceError, InvalidInput, NoEquilibrium, numeric
 from solver.inputs.flight import FlightCondition, OperatingPoint
 from solver.inputs.options import SolverOptions
 from solver.inputs.wing import Wing
+from solver.model.exact_beam import exact_internal_loads
 from solver.model.geometry import DEG
+from solver.model.lag_beam import lag_internal_loads
 from solver.numerics.evaluation import Evaluation
 from solver.numerics.newton import newton
 from solver.numerics.path import PathSettings, follow
@@ -487,15 +489,17 @@ def _antisymmetric_parts(
         u0 = x[layout.heave]
         torque = torque - heave * outboard_sum(strip(axis, k)) - u0 * outboard_sum(strip(daxis, k))
     widths = np.diff(wing.y)
+    exact = _exact_statics(system, x, dx, base, change) if layout.exact else {}
     stations = Stations(
         y=wing.y,
         heave=heave.copy(),
-        slope=slope.copy(),
+        slope=exact.pop("slope", slope.copy()),
         twist=phi * math.cos(sweep) - np.degrees(slope) * math.sin(sweep),
         axis_twist=phi.copy(),
         shear=shear,
-        bending_moment=bending,
-        torque=torque,
+        bending_moment=exact.pop("bending_moment", bending),
+        torque=exact.pop("torque", torque),
+        **exact,
     )
     lift = strip(dfz, k)
     strips = Panels(
@@ -506,3 +510,39 @@ def _antisymmetric_parts(
         rigid_lift_per_span=q * strip(rigid_change.force[2], k) / widths,
     )
     return stations, strips
+
+
+# The complex step of `_exact_statics` [-]: its imaginary part carries the derivative, and
+# nothing is subtracted, so any step far below the real parts gives it to round-off.
+_COMPLEX_STEP = 1e-30
+
+
+def _exact_statics(
+    system: CoupledSystem, x: np.ndarray, dx: np.ndarray, base: PanelLoads, change: PanelLoads
+) -> dict[str, np.ndarray]:
+    """Under the geometrically exact beam, the disturbance's slope (the exact beam reports
+    sin(beta): cos(beta) dbeta), bending moment and torque [N m] (and with lag its lag
+    displacement [m], rotation [deg] and lag bending moment [N m]): the derivative of the
+    statics about the deformed stations that the symmetric answer reports
+    (`solver.model.exact_beam.exact_internal_loads`, with lag
+    `solver.model.lag_beam.lag_internal_loads`) along the loads' change and the rotations'
+    (dx), by a complex step (the statics are analytic in the forces, their points and the
+    rotations: exact to round-off)."""
+    layout, h, k = system.layout, _COMPLEX_STEP, system.chordwise
+    force = base.force + 1j * h * change.force
+    center = base.center + 1j * h * change.center
+    beta = x[layout.slope] + 1j * h * dx[layout.slope]
+    slope = np.cos(x[layout.slope]) * dx[layout.slope]
+    if not layout.lag:
+        flap, torque = exact_internal_loads(system.wing, force, center, beta, k)  # type: ignore[arg-type]
+        return {"slope": slope, "bending_moment": flap.imag / h, "torque": torque.imag / h}
+    psi = x[layout.lag_rotation] + 1j * h * dx[layout.lag_rotation]
+    flap, torque, lag_moment = lag_internal_loads(system.wing, force, center, (beta, psi), k)  # type: ignore[arg-type]
+    return {
+        "slope": slope,
+        "bending_moment": flap.imag / h,
+        "torque": torque.imag / h,
+        "lag": dx[layout.lag_displacement].copy(),
+        "lag_rotation": np.degrees(dx[layout.lag_rotation]),
+        "lag_bending_moment": lag_moment.imag / h,
+    }

@@ -30,10 +30,19 @@ def scaled_stations(stations: Stations, factor: float) -> Stations:
         shear=factor * stations.shear,
         bending_moment=factor * stations.bending_moment,
         torque=factor * stations.torque,
+        **{name: factor * value for name, value in _lag_fields(stations).items()},
         bending_stress=None,
         shear_stress=None,
         von_mises_stress=None,
     )
+
+
+_LAG = ("lag", "lag_rotation", "lag_bending_moment")
+
+
+def _lag_fields(stations: Stations) -> dict[str, np.ndarray]:
+    """The stations' lag fields that are given (a wing bending in its plane: `Stations.lag`)."""
+    return {name: getattr(stations, name) for name in _LAG if getattr(stations, name) is not None}
 
 
 def scaled_panels(panels: Panels, factor: float) -> Panels:
@@ -67,9 +76,19 @@ def _combined(
         torque=s.torque + sign * a.torque,
         bending_stiffness=wing.bending_stiffness,
         torsional_stiffness=wing.torsional_stiffness,
+        **{
+            name: value + sign * _lag_fields(a)[name]
+            for name, value in _lag_fields(s).items()
+            if name in _lag_fields(a)
+        },
     )
     if wing.spar is not None:
-        stress = wing.spar.stresses(stations.bending_moment, stations.torque)
+        stress = wing.spar.stresses(
+            stations.bending_moment,
+            stations.torque,
+            stations.lag_bending_moment,
+            wing.in_plane_bending_stiffness,
+        )
         stations = dataclasses.replace(
             stations,
             bending_stress=stress.bending,

@@ -270,11 +270,12 @@ LAG_FIELD = "wing.in_plane_bending_stiffness"
 def refuse_lag(what: str) -> None:
     """Refuse a wing with lag bending (`solver.model.lag_beam`) for `what` (a phrase naming
     the operation or the part of it), naming `wing.in_plane_bending_stiffness`: lag is taken
-    by the statics and flutter only for now."""
+    by the statics, flutter, the controls and the load cases only for now."""
     raise InvalidInput(
         LAG_FIELD,
-        f"lag (in-plane) bending is taken by /solve, /sweep and /flutter for now: {what} does "
-        "not take it yet; leave the field out (the wing rigid in its plane)",
+        "lag (in-plane) bending is taken by /solve, /sweep, /flutter, /controls, /roll and "
+        f"/loads' cases for now: {what} does not take it yet; leave the field out (the wing "
+        "rigid in its plane)",
     )
 
 

@@ -182,12 +182,27 @@ class TubeSpar:
         area = self.area
         return float(2 * self.material.density * np.sum((area[1:] + area[:-1]) / 2 * np.diff(arc)))
 
-    def stresses(self, bending_moment: np.ndarray, torque: np.ndarray) -> SparStresses:
-        """The outer fibre's stresses under `bending_moment` and `torque` (N,) [N m]."""
+    def stresses(
+        self,
+        bending_moment: np.ndarray,
+        torque: np.ndarray,
+        lag_bending_moment: np.ndarray | None = None,
+        in_plane_bending_stiffness: np.ndarray | None = None,
+    ) -> SparStresses:
+        """The outer fibre's stresses under the section's `bending_moment` and `torque` (N,)
+        [N m], and with lag bending its in-plane moment `lag_bending_moment` (N,) [N m] of a
+        section whose in-plane stiffness is `in_plane_bending_stiffness` (N,) [N m^2]: the
+        section bends in its plane as one, so the tube carries EI_tube / EI_lag of that
+        moment (its own in-plane curvature's), and on a round tube the two bending stresses
+        add as a vector at the outer fibre."""
         radius = self.outer_diameter / 2
         bending = bending_moment * radius / self.second_moment
         shear = torque * radius / self.polar_moment
-        return SparStresses(bending, shear, np.sqrt(bending**2 + 3 * shear**2))
+        across = np.zeros_like(bending)
+        if lag_bending_moment is not None and in_plane_bending_stiffness is not None:
+            share = self.bending_stiffness / np.asarray(in_plane_bending_stiffness, dtype=float)
+            across = share * lag_bending_moment * radius / self.second_moment
+        return SparStresses(bending, shear, np.sqrt(bending**2 + across**2 + 3 * shear**2))
 
 
 @dataclass(frozen=True)
@@ -195,7 +210,7 @@ class SparStresses:
     """(N,) [Pa] at each station's outer fibre: bending, M (D/2) / I (positive where the moment
     bends the tip up: the lower fibre in tension, the upper in compression by as much);
     torsional shear, T (D/2) / J (the sign of the torque); von Mises, sqrt(bending^2 +
-    3 shear^2)."""
+    3 shear^2), with lag bending sqrt(bending^2 + in-plane bending^2 + 3 shear^2)."""
 
     bending: np.ndarray
     shear: np.ndarray

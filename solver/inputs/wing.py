@@ -281,8 +281,8 @@ class Wing:
         "in-plane (lag, chordwise) bending stiffness EI_lag of the section about its own normal "
         "(the section's stiffer axis for a wing; null: rigid in its plane, the planar beam). "
         "Needs options.structure = geometrically_exact, which then adds the lag displacement "
-        "and rotation to its unknowns (/solve, /sweep and /flutter take it for now; the other "
-        "operations refuse it). "
+        "and rotation to its unknowns (/solve, /sweep, /flutter, /controls, /roll and /loads "
+        "take it for now; /gust, /loads' gust conditions and /optimize refuse it). "
         "Compiled in the lag layouts only (solver.model.layout.LAG_SLOTS)",
         ge=1e-3,
         le=1e12,

@@ -145,7 +145,9 @@ def _sinc(x: Any) -> Any:
         symbol: Any = x
         safe_symbol: Any = ca.if_else(symbol == 0, 1, symbol)
         return ca.if_else(ca.fabs(symbol) < 1e-3, series, ca.sin(symbol) / safe_symbol)
-    x = np.asarray(x, dtype=float)
+    # Complex arrays pass as they are: the roll's linearised statics differentiate through
+    # this by a complex step (`solver.controls.roll`).
+    x = np.asarray(x) if np.iscomplexobj(x) else np.asarray(x, dtype=float)
     safe = np.where(x == 0.0, 1.0, x)
     return np.where(np.abs(x) < 1e-3, series, np.sin(safe) / safe)
 

@@ -66,7 +66,7 @@ class RollInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        check_lag(self.wing.in_plane_bending_stiffness, self.options, "roll (/roll)")
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
         if self.flight.velocity is None:
             raise InvalidInput("flight.velocity", "is required: the airspeed to roll at")
         require_control_surfaces(self.wing, "the roll response is the ailerons'")
@@ -137,9 +137,7 @@ class ControlsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        check_lag(
-            self.wing.in_plane_bending_stiffness, self.options, "control effectiveness (/controls)"
-        )
+        check_lag(self.wing.in_plane_bending_stiffness, self.options, "")
         require_control_surfaces(self.wing, "effectiveness is a control surface's")
         require_flow_model(self.modelled.aerodynamics)
         check_airspeeds(self.velocities)

@@ -204,7 +204,11 @@ class LoadsInput:
 
     def __post_init__(self) -> None:
         check_meshed(self.wing, self.options)
-        check_lag(self.wing.in_plane_bending_stiffness, self.options, "the sizing loads (/loads)")
+        check_lag(
+            self.wing.in_plane_bending_stiffness,
+            self.options,
+            "the gust conditions' loads (/loads' gusts)" if self.gusts else "",
+        )
         if not self.cases and self.envelope is None and not self.gusts:
             raise InvalidInput("cases", "give load cases, an envelope, or both")
         if self.gusts and self.wing.mass is None:

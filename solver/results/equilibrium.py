@@ -66,7 +66,9 @@ class Stations:
     von_mises_stress: np.ndarray | None = quantity(
         "Pa",
         "spar only (else null): von Mises stress at the outer fibre, "
-        "sqrt(bending_stress^2 + 3 shear_stress^2)",
+        "sqrt(bending_stress^2 + 3 shear_stress^2); with lag bending the tube's share of "
+        "the in-plane moment (EI_spar / EI_lag of lag_bending_moment) bends it too, and its "
+        "stress adds to bending_stress as a vector at the round tube's outer fibre",
         default=None,
     )
     inertial_shear: np.ndarray | None = quantity(

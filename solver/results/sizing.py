@@ -71,6 +71,15 @@ class CaseLoads:
     left_torque: np.ndarray | None = quantity(
         "N m", "rolling cases: (N,) the left wing's torque", default=None
     )
+    lag_bending_moment: np.ndarray | None = quantity(
+        "N m",
+        "with lag bending (wing.in_plane_bending_stiffness): (N,) the in-plane (chordwise) "
+        "bending moment, as /solve's stations.lag_bending_moment; null without",
+        default=None,
+    )
+    left_lag_bending_moment: np.ndarray | None = quantity(
+        "N m", "rolling cases with lag bending: (N,) the left wing's in-plane moment", default=None
+    )
     tip_heave: float | None = quantity("m", "tip displacement", default=None)
     tip_twist: float | None = quantity("deg", "tip streamwise twist (elastic)", default=None)
     solve_time: float = quantity("s", "wall time of this case's solve", default=0.0)
@@ -98,6 +107,18 @@ class SpanwiseEnvelope:
     max_torque_case: list[int] = quantity("-", "(N,) the case giving it")
     min_torque: np.ndarray = quantity("N m", "(N,) smallest torque")
     min_torque_case: list[int] = quantity("-", "(N,) the case giving it")
+    max_lag_bending_moment: np.ndarray | None = quantity(
+        "N m", "with lag bending: (N,) largest in-plane bending moment; null without", default=None
+    )
+    max_lag_bending_moment_case: list[int] | None = quantity(
+        "-", "with lag bending: (N,) the case giving it", default=None
+    )
+    min_lag_bending_moment: np.ndarray | None = quantity(
+        "N m", "with lag bending: (N,) smallest in-plane bending moment; null without", default=None
+    )
+    min_lag_bending_moment_case: list[int] | None = quantity(
+        "-", "with lag bending: (N,) the case giving it", default=None
+    )
 
 
 @dataclass(frozen=True, eq=False)

@@ -79,6 +79,7 @@ def _symmetric(
         shear=stations.shear,
         bending_moment=stations.bending_moment,
         torque=stations.torque,
+        lag_bending_moment=stations.lag_bending_moment,
         tip_heave=equilibrium.totals.tip_heave,
         tip_twist=equilibrium.totals.tip_twist,
     )
@@ -123,6 +124,8 @@ def _rolling(
         left_shear=left.shear,
         left_bending_moment=left.bending_moment,
         left_torque=left.torque,
+        lag_bending_moment=right.lag_bending_moment,
+        left_lag_bending_moment=left.lag_bending_moment,
         tip_heave=float(right.heave[-1]),
         tip_twist=float(right.twist[-1]),
     )

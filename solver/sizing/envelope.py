@@ -1,8 +1,8 @@
-"""The loads envelope: per station the largest and smallest shear, bending moment and torque over
-every case that was flown, each with its case; the correlated loads at chosen stations (bending
-moment against torque, and their convex hull: the stress engineer's 'potato plot'); the tube
-spar's von Mises stresses under the envelope at limit and at ultimate load, and its margins of
-safety.
+"""The loads envelope: per station the largest and smallest shear, bending moment and torque
+(and with lag bending the in-plane moment) over every case that was flown, each with its case;
+the correlated loads at chosen stations (bending moment against torque, and their convex hull:
+the stress engineer's 'potato plot'); the tube spar's von Mises stresses under the envelope at
+limit and at ultimate load, and its margins of safety.
 
 A rolling case loads its two wings apart: both count, each at its own stations (the left wing's
 in its mirrored frame, root outboard, like the right's). Every extreme is one of the cases'
@@ -24,15 +24,20 @@ __all__ = ["ULTIMATE_FACTOR", "correlated_loads", "spanwise_envelope", "spar_env
 # CS 23.303 / CS 25.303: ultimate loads are the limit loads times 1.5.
 ULTIMATE_FACTOR = 1.5
 
-_QUANTITIES = ("shear", "bending_moment", "torque")
+_QUANTITIES = ("shear", "bending_moment", "torque", "lag_bending_moment")
 
 
 def _wings(case: CaseLoads) -> list[dict[str, np.ndarray]]:
-    """A flown case's loads, one mapping per wing it loads apart (one, or two when rolling)."""
-    right = {name: getattr(case, name) for name in _QUANTITIES}
+    """A flown case's loads, one mapping per wing it loads apart (one, or two when rolling);
+    the in-plane moment only with lag bending."""
+    right = {name: getattr(case, name) for name in _QUANTITIES if getattr(case, name) is not None}
     if case.left_shear is None:
         return [right]
-    left = {name: getattr(case, f"left_{name}") for name in _QUANTITIES}
+    left = {
+        name: getattr(case, f"left_{name}")
+        for name in _QUANTITIES
+        if getattr(case, f"left_{name}") is not None
+    }
     return [right, left]
 
 
@@ -50,6 +55,8 @@ def spanwise_envelope(y: np.ndarray, cases: Sequence[CaseLoads]) -> SpanwiseEnve
     index = np.array([i for i, _ in flown])
     values: dict[str, object] = {}
     for name in _QUANTITIES:
+        if not all(name in wing for _, wing in flown):  # the in-plane moment, without lag
+            continue
         table = np.vstack([wing[name] for _, wing in flown])  # (wings, N)
         top, bottom = np.argmax(table, axis=0), np.argmin(table, axis=0)
         columns = np.arange(table.shape[1])
@@ -108,7 +115,15 @@ def spar_envelope(wing: Wing, cases: Sequence[CaseLoads]) -> SparEnvelope | None
         return None
     index = np.array([i for i, _ in flown])
     stress = np.vstack(
-        [spar.stresses(w["bending_moment"], w["torque"]).von_mises for _, w in flown]
+        [
+            spar.stresses(
+                w["bending_moment"],
+                w["torque"],
+                w.get("lag_bending_moment"),
+                wing.in_plane_bending_stiffness,
+            ).von_mises
+            for _, w in flown
+        ]
     )
     worst = np.argmax(stress, axis=0)
     limit = stress[worst, np.arange(stress.shape[1])]

@@ -289,7 +289,12 @@ def _with_spar(
     wing: Wing, spar: TubeSpar, stations: Stations, totals: Totals, safety_factor: float
 ) -> tuple[Stations, Totals]:
     """The spar's stresses, margin and mass added to the answer."""
-    stress = spar.stresses(stations.bending_moment, stations.torque)
+    stress = spar.stresses(
+        stations.bending_moment,
+        stations.torque,
+        stations.lag_bending_moment,
+        wing.in_plane_bending_stiffness,
+    )
     worst = int(np.argmax(stress.von_mises))
     largest = float(stress.von_mises[worst])
     margin = spar.material.yield_stress / (safety_factor * largest) - 1 if largest > 0 else None

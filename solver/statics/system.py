@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from solver.inputs.control_surfaces import antisymmetric_camber, camber_rate
-from solver.inputs.options import SolverOptions, check_lag, refuse_lag, require_flow_model
+from solver.inputs.options import SolverOptions, check_lag, require_flow_model
 from solver.inputs.wing import Wing
 from solver.model.geometry import chordwise_nodes
 from solver.model.layout import Aerodynamics, Layout, Structure
@@ -206,8 +206,6 @@ class CoupledSystem:
         """The mesh's flow model (`solver.numerics.compiled`), whatever the flow: the
         lattice's (control derivatives, antisymmetric flow, roll); strip theory has none."""
         require_flow_model(self.aerodynamics)
-        if self.layout.lag:
-            refuse_lag("control surfaces' derivatives and roll (the flow model)")
         return model_for(self.layout, flow=True)
 
     @cached_property

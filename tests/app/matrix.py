@@ -198,17 +198,43 @@ def factors(operation: solver.Operation) -> list[Factor]:
     return [*found, flight, *_wing_factors(operation.requires)]
 
 
-def _covering(domains: list[int], strength: int) -> list[tuple[int, ...]]:
+def _allowed(row: dict[int, int], k: int, value: int, forbidden: set[Pair]) -> bool:
+    """Setting factor k to `value` forms no forbidden pair with the row's values."""
+    return not any(
+        ((k, value), (i, v)) in forbidden or ((i, v), (k, value)) in forbidden
+        for i, v in row.items()
+    )
+
+
+def _allowed_row(values: list[int], forbidden: set[Pair], domains: list[int]) -> tuple[int, ...]:
+    """`values` with each value that forms a forbidden pair with the ones before it replaced by
+    its factor's first allowed one (the all-first and all-last cases)."""
+    row: dict[int, int] = {}
+    for k, value in enumerate(values):
+        choices = [value, *range(domains[k])]
+        row[k] = next(v for v in choices if _allowed(row, k, v, forbidden))
+    return tuple(row[k] for k in range(len(values)))
+
+
+def _covering(
+    domains: list[int],
+    strength: int,
+    forbidden: set[Pair] = frozenset(),  # type: ignore[assignment]
+) -> list[tuple[int, ...]]:
     """Rows of value indices in which every combination of values of every `strength`
-    factors meets (a covering array), built greedily: each row starts from the first
-    combination not yet met and takes, factor by factor, the value that meets the most new
-    ones (the lowest on a tie)."""
+    factors meets (a covering array), but the `forbidden` pairs' combinations, built
+    greedily: each row starts from the first combination not yet met and takes, factor by
+    factor, the allowed value that meets the most new ones (the lowest on a tie)."""
     strength = min(strength, len(domains))
     groups = list(itertools.combinations(range(len(domains)), strength))
     uncovered = {
         (group, values)
         for group in groups
         for values in itertools.product(*(range(domains[i]) for i in group))
+        if all(
+            _allowed(dict(zip(group[:a], values[:a], strict=True)), group[a], values[a], forbidden)
+            for a in range(len(group))
+        )
     }
     rows: list[tuple[int, ...]] = []
 
@@ -226,7 +252,8 @@ def _covering(domains: list[int], strength: int) -> list[tuple[int, ...]]:
         row: dict[int, int] = dict(zip(group, values, strict=True))
         for k in range(len(domains)):
             if k not in row:
-                row[k] = max(range(domains[k]), key=lambda v, k=k: (_gain(row, k, v), -v))
+                allowed = [v for v in range(domains[k]) if _allowed(row, k, v, forbidden)]
+                row[k] = max(allowed, key=lambda v, k=k: (_gain(row, k, v), -v))
         done = tuple(row[k] for k in range(len(domains)))
         uncovered -= {(g, tuple(done[i] for i in g)) for g in groups}
         rows.append(done)
@@ -307,13 +334,18 @@ def _accepted(operation: solver.Operation, settings: dict[str, Any]) -> bool:
     return True
 
 
+Pair = tuple[tuple[int, int], tuple[int, int]]  # two (factor, value) indices never together
+
+
 def _split(
     operation: solver.Operation, table: list[Factor]
-) -> tuple[list[Factor], list[dict[str, Any]]]:
+) -> tuple[list[Factor], list[dict[str, Any]], set[Pair]]:
     """The factors with the values the service refuses whatever the rest (a surface's hinge
     with one chordwise panel, for an operation that needs surfaces) taken out, and one case for
     each such value, beside a base the service accepts: so the combinations of the rest are
-    met in cases that reach a worker."""
+    met in cases that reach a worker. A value refused beside the base but accepted once one
+    other factor takes another value (a wing's in-plane stiffness, which needs the exact beam)
+    stays, with the pairs it is refused in (that factor's other values) never formed."""
     base = {path: values[0] for path, values in table}
     if not _accepted(operation, base):
         for path, values in table:
@@ -321,13 +353,46 @@ def _split(
             if found is not None:
                 base[path] = found
                 break
-    kept: list[Factor] = []
+    accepted = [
+        [v for v in values if _accepted(operation, base | {path: v})] or values
+        for path, values in table
+    ]
+    kept = [[*values] for values in accepted]
     alone: list[dict[str, Any]] = []
-    for path, values in table:
-        accepted = [v for v in values if _accepted(operation, base | {path: v})]
-        alone += [base | {path: v} for v in values if v not in accepted]
-        kept.append((path, accepted or values))
-    return kept, alone
+    forbidden: set[Pair] = set()
+    for i, (path, values) in enumerate(table):
+        for v in values:
+            if v in accepted[i]:
+                continue
+            enabling = next(
+                (
+                    (
+                        j,
+                        [
+                            w
+                            for w in accepted[j]
+                            if _accepted(operation, base | {path: v, other: w})
+                        ],
+                    )
+                    for j, (other, _) in enumerate(table)
+                    if j != i
+                    and any(
+                        _accepted(operation, base | {path: v, other: w})
+                        for w in accepted[j]
+                        if w != base[other]
+                    )
+                ),
+                None,
+            )
+            if enabling is None:
+                alone.append(base | {path: v})
+                continue
+            kept[i].append(v)
+            j, enablers = enabling
+            forbidden |= {
+                ((i, len(kept[i]) - 1), (j, k)) for k, w in enumerate(kept[j]) if w not in enablers
+            }
+    return [(path, kept[i]) for i, (path, _) in enumerate(table)], alone, forbidden
 
 
 def cases() -> list[Case]:
@@ -335,12 +400,12 @@ def cases() -> list[Case]:
     and each value the service refuses whatever the rest, once."""
     found = []
     for operation in solver.OPERATION_TABLE:
-        table, alone = _split(operation, factors(operation))
+        table, alone, forbidden = _split(operation, factors(operation))
         domains = [len(values) for _, values in table]
         rows = [
-            tuple(0 for _ in domains),
-            tuple(d - 1 for d in domains),
-            *_covering(domains, STRENGTH),
+            _allowed_row([0 for _ in domains], forbidden, domains),
+            _allowed_row([d - 1 for d in domains], forbidden, domains),
+            *_covering(domains, STRENGTH, forbidden),
         ]
         every = [
             {path: values[v] for (path, values), v in zip(table, row, strict=True)} for row in rows

@@ -16,6 +16,7 @@ exists to find (issue 40: the induced-drag objective under strip theory divided 
 
 from __future__ import annotations
 
+import itertools
 import json
 from collections import Counter
 
@@ -28,7 +29,7 @@ from app.problems import Problem, problem_of
 from app.schemas import REQUESTS, RESPONSES
 from app.service import task_of
 from app.settings import Settings
-from tests.app.matrix import Case, cases
+from tests.app.matrix import Case, _covering, cases
 
 CASES = cases()
 TABLE = {op.name: op for op in solver.OPERATION_TABLE}
@@ -79,3 +80,45 @@ def test_the_matrix_reaches_every_operation_and_mostly_answers() -> None:
     # Measured: 94 of 115 answered, 3 domain answers, 18 refused with a type (invalid input
     # naming the field).
     assert _OUTCOMES["answered"] + _OUTCOMES["domain"] >= 0.7 * ran, dict(_OUTCOMES)
+
+
+def test_the_covering_array_meets_every_allowed_pair_and_no_forbidden_one() -> None:
+    """Four factors of 2, 3, 2, 2 values with value 1 of factor 0 never beside values 0 and 2
+    of factor 1 (as a wing's in-plane stiffness is never beside the linear beam): every other
+    pair of values meets in some row, and no row forms a forbidden pair."""
+    domains = [2, 3, 2, 2]
+    forbidden = {((0, 1), (1, 0)), ((0, 1), (1, 2))}
+    rows = _covering(domains, 2, forbidden)
+    for (i, a), (j, b) in itertools.combinations(
+        [(k, v) for k, d in enumerate(domains) for v in range(d)], 2
+    ):
+        if i == j:
+            continue
+        met = any(row[i] == a and row[j] == b for row in rows)
+        assert met != (((i, a), (j, b)) in forbidden), ((i, a), (j, b))
+
+
+def test_a_value_that_needs_another_meets_the_rest_beside_it() -> None:
+    """The wing's in-plane stiffness is refused under the linear beam (the default structure),
+    so it meets the other factors beside the geometrically exact beam, in cases the service
+    lets through to a worker for every operation that takes lag (and for none that refuses
+    it)."""
+    takes_lag = {"solve", "sweep", "flutter", "controls", "roll", "loads"}
+    for operation in TABLE:
+        beside = [
+            case
+            for case in CASES
+            if case.operation == operation
+            and case.body["wing"].get("in_plane_bending_stiffness") is not None
+            and (case.body.get("options") or {}).get("structure") == "geometrically_exact"
+        ]
+        reaching = [case for case in beside if _reaches_a_worker(case)]
+        assert bool(reaching) == (operation in takes_lag), operation
+
+
+def _reaches_a_worker(case: Case) -> bool:
+    try:
+        task_of(REQUESTS[case.operation].model_validate(case.body), SETTINGS)
+    except (ValidationError, Problem):
+        return False
+    return True

@@ -32,10 +32,12 @@ def _swept_cambered_twisted() -> solver.Wing:
     )
 
 
-def _with_surfaces(deflection: float = 4.0) -> solver.Wing:
-    """N = 9, k = 3 (nodes on 0.25 and 0.75), a flap and an aileron, 10 deg aft sweep."""
+def _with_surfaces(deflection: float = 4.0, in_plane: float | None = None) -> solver.Wing:
+    """N = 9, k = 3 (nodes on 0.25 and 0.75), a flap and an aileron, 10 deg aft sweep; with
+    `in_plane` [N m^2] an in-plane (lag) bending stiffness."""
     n = 9
     chord = 1.0 - 0.4 * np.linspace(0, 1, n)
+    lag = {} if in_plane is None else {"in_plane_bending_stiffness": in_plane * chord**2}
     return solver.Wing.create(
         np.linspace(0, 4, n),
         chord,
@@ -54,7 +56,12 @@ def _with_surfaces(deflection: float = 4.0) -> solver.Wing:
                 "kind": "aileron",
             },
         ],
+        **lag,
     )
+
+
+# Soft enough in its plane (4 times its flap stiffness) that lag moves the loads at first order.
+IN_PLANE = 8e4
 
 
 def _massive() -> solver.Wing:
@@ -76,6 +83,7 @@ def _massive() -> solver.Wing:
 
 
 ROTATION = Flow.along(1, 2, image=-1.0, image_jacobian=-1.0, roll_rate=0.05)
+EXACT = "geometrically_exact"
 
 SYSTEMS = {
     "tapered_forward_ea": lambda: CoupledSystem(tapered_forward_ea(), 6.0),
@@ -117,6 +125,13 @@ SYSTEMS = {
     "exact_antisymmetric_rolling_k3": lambda: CoupledSystem(
         _with_surfaces(), 0.0, 3, False, flow=ROTATION, structure="geometrically_exact"
     ),
+    # With lag (solver.model.lag_beam): the flow model's image carries the lag unknowns too.
+    "exact_lag_antisymmetric_rolling_k3": lambda: CoupledSystem(
+        _with_surfaces(in_plane=IN_PLANE), 0.0, 3, False, flow=ROTATION, structure=EXACT
+    ),
+    "exact_lag_symmetric_flap_k3_deformed_axis": lambda: CoupledSystem(
+        _with_surfaces(in_plane=IN_PLANE), 3.0, 3, True, flow=Flow.along(0, 2), structure=EXACT
+    ),
     "exact_strip_tapered_forward_ea": lambda: CoupledSystem(
         tapered_forward_ea(), 6.0, aerodynamics="strip", structure="geometrically_exact"
     ),
@@ -136,6 +151,9 @@ def _deformed_state(system: CoupledSystem, seed: int) -> np.ndarray:
     x[layout.slope] = rng.uniform(-rotation, rotation, n)  # [-]
     x[layout.twist] = rng.uniform(-5.0, 5.0, n)  # [deg]
     x[layout.circulation] = rng.uniform(0.0, 0.1, layout.n_panels)  # [m]
+    if layout.lag:
+        x[layout.lag_displacement] = rng.uniform(-0.1, 0.1, n)  # [m]
+        x[layout.lag_rotation] = rng.uniform(-0.3, 0.3, n)  # [rad]
     return x
 
 
@@ -243,6 +261,12 @@ def test_the_model_version_follows_the_code_not_its_documentation(tmp_path, monk
 CONTROL_SYSTEMS = {
     "flap": lambda wing: CoupledSystem(wing, 3.0, 3, True, flow=Flow.along(0, 2)),
     "aileron_antisymmetric": lambda wing: CoupledSystem(wing, 0.0, 3, False, flow=ROTATION),
+    "exact_lag_flap": lambda wing: CoupledSystem(
+        wing, 3.0, 3, True, flow=Flow.along(0, 2), structure=EXACT
+    ),
+    "exact_lag_aileron_antisymmetric": lambda wing: CoupledSystem(
+        wing, 0.0, 3, False, flow=ROTATION, structure=EXACT
+    ),
 }
 
 
@@ -252,15 +276,16 @@ def test_the_control_derivatives_are_the_derivatives_in_the_deflection(name: str
     differences in the surface's deflection (0.01 deg: truncation ~1e-9, round-off ~1e-12
     relative)."""
     build = CONTROL_SYSTEMS[name]
-    system = build(_with_surfaces())
+    in_plane = IN_PLANE if "lag" in name else None
+    system = build(_with_surfaces(in_plane=in_plane))
     x = _deformed_state(system, 11)
     _, _, controls = system.evaluate_with_controls(x)
-    surface = 0 if name == "flap" else 1
+    surface = 0 if name.endswith("flap") else 1
     step = 0.01  # [deg]
     deflection = system.wing.control_surfaces[surface].deflection
     moved = []
     for sign in (1, -1):
-        wing = _with_surfaces(deflection + sign * step) if surface == 1 else None
+        wing = _with_surfaces(deflection + sign * step, in_plane) if surface == 1 else None
         if wing is None:  # the flap: rebuild it deflected
             surfaces = list(system.wing.control_surfaces)
             surfaces[0] = dataclasses.replace(surfaces[0], deflection=6.0 + sign * step)
@@ -343,7 +368,14 @@ def _camber(system: CoupledSystem) -> np.ndarray:
     return np.asarray(system.layout.unpack(system.parameters).camber)
 
 
-@pytest.mark.parametrize("name", ["symmetric_flap_k3_deformed_axis", "tapered_forward_ea"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "symmetric_flap_k3_deformed_axis",
+        "tapered_forward_ea",
+        "exact_lag_symmetric_flap_k3_deformed_axis",
+    ],
+)
 def test_with_its_own_left_half_in_step_the_full_span_model_is_the_symmetric_model(name: str):
     system = SYSTEMS[name]().with_flow(Flow())
     x = _deformed_state(system, 17)
@@ -356,15 +388,23 @@ def test_with_its_own_left_half_in_step_the_full_span_model_is_the_symmetric_mod
     np.testing.assert_allclose(r1, ours1, rtol=1e-12, atol=1e-14)
 
 
-def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_derivative():
+# The linear beam's, and the exact beam with lag: the left half's lag the right half's mirrored.
+BEAMS = {"linear": ("linear", None), "exact_lag": (EXACT, IN_PLANE)}
+
+
+@pytest.mark.parametrize("beam", list(BEAMS))
+def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_derivative(beam):
     """At a deformed, loaded symmetric state (flap and aileron deflected, alpha 3 deg, swept,
     torque about the heaved axis), the model with the image's own derivatives turned gives
     d/de r(x + e d, x - e d) of the full-span model whose left half moves on its own: J0, J1,
     the aileron's column (its camber +c on the right, -c on the left), the roll rate's column
     and the rolling moment's gradient (2 d/de of the right half's). Central differences, step
     1e-6: truncation and round-off ~1e-10 of each row's scale; 1e-7 leaves a margin of 1000."""
-    wing = _with_surfaces()
-    system = CoupledSystem(wing, 3.0, 3, True, flow=Flow.along(1, 2, image_jacobian=-1.0))
+    structure, in_plane = BEAMS[beam]
+    wing = _with_surfaces(in_plane=in_plane)
+    system = CoupledSystem(
+        wing, 3.0, 3, True, flow=Flow.along(1, 2, image_jacobian=-1.0), structure=structure
+    )
     x = _deformed_state(system, 19)
     evaluation, _, controls = system.evaluate_with_controls(x)
     p, camber = system.flow_parameters, _camber(system)
@@ -414,13 +454,17 @@ def test_the_antisymmetric_linearisation_is_the_full_span_models_antisymmetric_d
     close(controls.roll_x, roll_x)
 
 
-def test_the_linearised_panel_loads_are_the_full_span_models_antisymmetric_derivative():
+@pytest.mark.parametrize("beam", list(BEAMS))
+def test_the_linearised_panel_loads_are_the_full_span_models_antisymmetric_derivative(beam):
     """The panel loads' and force points' derivatives along a direction dx in the unknowns
     (a parameter) plus the aileron's column, with the image's own derivatives turned: d/de of
     the full-span model's right-half loads at (x + e dx, x - e dx), camber +-e c. Central
     differences, step 1e-6: ~1e-10 of each load's scale; 1e-7 leaves a margin of 1000."""
-    wing = _with_surfaces()
-    system = CoupledSystem(wing, 3.0, 3, True, flow=Flow.along(1, 2, image_jacobian=-1.0))
+    structure, in_plane = BEAMS[beam]
+    wing = _with_surfaces(in_plane=in_plane)
+    system = CoupledSystem(
+        wing, 3.0, 3, True, flow=Flow.along(1, 2, image_jacobian=-1.0), structure=structure
+    )
     x = _deformed_state(system, 23)
     dx = np.random.default_rng(29).normal(size=x.size) * np.abs(x).max() * 0.1
     parameters = system.parameters.copy()

@@ -4,6 +4,7 @@ cases came from, and what it refuses before any work."""
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 
@@ -204,6 +205,19 @@ def test_gust_conditions_need_the_wings_mass() -> None:
     with pytest.raises(solver.InvalidInput) as caught:
         _loads(wing=solver.Wing.create(**study_arrays(16)), gusts=_GUSTS)
     assert caught.value.field == "wing.mass"
+
+
+def test_gust_conditions_refuse_a_wing_bending_in_its_plane_naming_it() -> None:
+    """Lag bending is taken in the load cases, not yet in the gust model (a 422 naming the
+    field before any work)."""
+    wing = loads_wings.wing()
+    lag = dataclasses.replace(wing, in_plane_bending_stiffness=2 * wing.bending_stiffness)
+    exact = solver.SolverOptions(structure="geometrically_exact")
+    assert _loads(wing=lag, options=exact).case_count > 0
+    with pytest.raises(solver.InvalidInput) as refused:
+        _loads(wing=lag, options=exact, envelope=None, gusts=_GUSTS)
+    assert refused.value.field == "wing.in_plane_bending_stiffness"
+    assert "gust" in refused.value.reason
 
 
 def test_a_gust_condition_past_flutter_is_answered_in_its_place() -> None:

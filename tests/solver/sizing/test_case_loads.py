@@ -50,6 +50,15 @@ def test_an_aileron_on_a_wing_without_one_is_an_invalid_case_not_an_error() -> N
     assert loads.status == "invalid" and loads.reason is not None and "aileron" in loads.reason
 
 
+def _rolled(
+    wing: solver.Wing, flight: solver.FlightCondition, options: solver.SolverOptions
+) -> solver.RollResponse:
+    """/roll's answer with every aileron at 5 deg, rolling at 0.2 rad/s, linearised."""
+    surfaces = tuple(dataclasses.replace(s, deflection=5.0) for s in wing.control_surfaces)
+    deflected = dataclasses.replace(wing, control_surfaces=surfaces)
+    return solver.roll(deflected, flight, options, roll_rate=0.2, method="linearised")
+
+
 def test_a_rolling_pull_out_loads_its_wings_apart_as_roll_answers_them() -> None:
     """Both wings' loads are /roll's (linearised about the trimmed symmetric equilibrium) with
     every aileron at the case's deflection and its roll rate; the wing whose aileron goes down
@@ -60,13 +69,7 @@ def test_a_rolling_pull_out_loads_its_wings_apart_as_roll_answers_them() -> None
     loads = case_loads(
         wing, "rolling", "given", flight, options, weight=300.0, aileron=5.0, roll_rate=0.2
     )
-    deflected = dataclasses.replace(
-        wing,
-        control_surfaces=tuple(
-            dataclasses.replace(s, deflection=5.0) for s in wing.control_surfaces
-        ),
-    )
-    rolled = solver.roll(deflected, flight, options, roll_rate=0.2, method="linearised")
+    rolled = _rolled(wing, flight, options)
     assert loads.status == "equilibrium"
     np.testing.assert_allclose(loads.bending_moment, rolled.right.bending_moment, rtol=1e-9)
     np.testing.assert_allclose(loads.left_bending_moment, rolled.left.bending_moment, rtol=1e-9)
@@ -78,3 +81,33 @@ def test_a_case_with_neither_aileron_nor_roll_rate_has_one_wings_loads() -> None
     flight = loads_wings.case("cruise", 14.0, 1.0).flight
     loads = case_loads(loads_wings.wing(), "cruise", "given", flight, OPTIONS, weight=300.0)
     assert loads.left_bending_moment is None and loads.solve_time > 0.0
+
+
+def test_with_lag_a_case_carries_the_in_plane_moment_as_solve_and_roll_answer_it() -> None:
+    """Under the exact beam, the wing twice as stiff in its plane as in flap: a symmetric case's
+    in-plane moment is /solve's, a rolling pull-out's each wing's /roll's (the aileron-down
+    wing's differing), and without lag there is none."""
+    wing = loads_wings.wing(control_surfaces=[loads_wings.AILERON])
+    lag = dataclasses.replace(wing, in_plane_bending_stiffness=2 * wing.bending_stiffness)
+    options = solver.SolverOptions(chordwise_panels=3, structure="geometrically_exact")
+    flight = loads_wings.case("pull-up", 12.0, 2.5).flight
+    loads = case_loads(lag, "pull-up", "given", flight, options, weight=300.0)
+    stations = solver.solve(lag, flight, options=options).stations
+    assert stations.lag_bending_moment is not None
+    np.testing.assert_array_equal(loads.lag_bending_moment, stations.lag_bending_moment)
+    rolling = case_loads(
+        lag, "rolling", "given", flight, options, weight=300.0, aileron=5.0, roll_rate=0.2
+    )
+    rolled = _rolled(lag, flight, options)
+    assert rolled.right.lag_bending_moment is not None
+    np.testing.assert_allclose(
+        rolling.lag_bending_moment, rolled.right.lag_bending_moment, rtol=1e-9
+    )
+    np.testing.assert_allclose(
+        rolling.left_lag_bending_moment, rolled.left.lag_bending_moment, rtol=1e-9
+    )
+    assert rolling.lag_bending_moment[0] != pytest.approx(
+        rolling.left_lag_bending_moment[0], rel=1e-3
+    )
+    planar = case_loads(wing, "pull-up", "given", flight, options, weight=300.0)
+    assert planar.lag_bending_moment is None and planar.left_lag_bending_moment is None

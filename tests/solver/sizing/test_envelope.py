@@ -4,6 +4,7 @@ stresses against the material's yield, at limit and at 1.5 times limit."""
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import numpy as np
@@ -18,27 +19,52 @@ from solver.sizing.envelope import (
 )
 from tests.solver.sizing import loads_wings
 
+# With lag: the exact beam, the wing twice as stiff in its plane as in flap.
+EXACT = solver.SolverOptions(structure="geometrically_exact")
+
+
+def _wing(spar: bool, lag: bool) -> solver.Wing:
+    wing = loads_wings.spar_wing() if spar else loads_wings.wing()
+    if lag:
+        return dataclasses.replace(wing, in_plane_bending_stiffness=2 * wing.bending_stiffness)
+    return wing
+
 
 @functools.cache
-def _one_by_one(spar: bool = False) -> tuple[solver.Wing, list[solver.Equilibrium]]:
-    wing = loads_wings.spar_wing() if spar else loads_wings.wing()
-    return wing, [solver.solve(wing, case.flight) for case in loads_wings.CASES]
+def _one_by_one(
+    spar: bool = False, lag: bool = False
+) -> tuple[solver.Wing, list[solver.Equilibrium]]:
+    wing, options = _wing(spar, lag), EXACT if lag else None
+    return wing, [solver.solve(wing, case.flight, options=options) for case in loads_wings.CASES]
 
 
 @functools.cache
-def _answer(spar: bool = False) -> solver.LoadsEnvelope:
-    wing = loads_wings.spar_wing() if spar else loads_wings.wing()
-    return solver.LoadsInput(wing=wing, cases=loads_wings.CASES).run()
+def _answer(spar: bool = False, lag: bool = False) -> solver.LoadsEnvelope:
+    options = EXACT if lag else None
+    return solver.LoadsInput(wing=_wing(spar, lag), cases=loads_wings.CASES, options=options).run()
 
 
-@pytest.mark.parametrize("quantity", ["shear", "bending_moment", "torque"])
-def test_the_envelope_is_the_extremes_of_the_cases_solved_one_by_one(quantity: str) -> None:
+QUANTITIES = [
+    *((quantity, False) for quantity in ("shear", "bending_moment", "torque")),
+    *((quantity, True) for quantity in ("shear", "bending_moment", "torque", "lag_bending_moment")),
+]
+
+
+@pytest.mark.parametrize(
+    ("quantity", "lag"), QUANTITIES, ids=[f"{q}{'-lag' if lag else ''}" for q, lag in QUANTITIES]
+)
+def test_the_envelope_is_the_extremes_of_the_cases_solved_one_by_one(
+    quantity: str, lag: bool
+) -> None:
     """1e-12 of the largest load: each extreme is one case's own number, the cases the same
-    solves as /solve's (the issue's tolerance; the two agree to the last digit)."""
-    _, equilibria = _one_by_one()
+    solves as /solve's (the issue's tolerance; the two agree to the last digit). With lag
+    bending (the exact beam) the in-plane moment too; without, none."""
+    _, equilibria = _one_by_one(lag=lag)
     per_case = [getattr(e.stations, quantity) for e in equilibria]
     largest, smallest = loads_wings.extremes(per_case)
-    envelope = _answer().envelope
+    envelope = _answer(lag=lag).envelope
+    assert envelope is not None
+    assert (envelope.max_lag_bending_moment is not None) == lag
     assert envelope is not None
     scale = np.max(np.abs(per_case))
     np.testing.assert_allclose(getattr(envelope, f"max_{quantity}"), largest, atol=1e-12 * scale)
@@ -94,15 +120,20 @@ def test_two_cases_hull_is_both_points_and_collinear_ones_their_ends() -> None:
     assert sorted(line.hull) == [1, 2]
 
 
-def test_the_spars_margins_are_its_largest_stress_against_yield() -> None:
+@pytest.mark.parametrize("lag", [False, True], ids=["planar", "lag"])
+def test_the_spars_margins_are_its_largest_stress_against_yield(lag: bool) -> None:
     """Per station the largest von Mises stress over the cases (each case's bending and torque
-    together), margin = yield / (factor x stress) - 1 at limit (1) and ultimate (1.5)."""
-    wing, equilibria = _one_by_one(spar=True)
-    spar = _answer(spar=True).spar
+    together; with lag bending the tube's share of the in-plane moment too: each case's own
+    /solve answer's stress), margin = yield / (factor x stress) - 1 at limit (1) and ultimate
+    (1.5)."""
+    wing, equilibria = _one_by_one(spar=True, lag=lag)
+    spar = _answer(spar=True, lag=lag).spar
     assert spar is not None and wing.spar is not None
     stresses = np.vstack(
         [
-            wing.spar.stresses(e.stations.bending_moment, e.stations.torque).von_mises
+            e.stations.von_mises_stress
+            if lag
+            else wing.spar.stresses(e.stations.bending_moment, e.stations.torque).von_mises
             for e in equilibria
         ]
     )
