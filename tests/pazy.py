@@ -165,6 +165,25 @@ SKIN_COUPLING = (
     + [-0.0809780725] * 2
     + [-1.39455813]
 )
+# K44 of the same file: the in-plane (lag) bending stiffness per element [N m^2], about 740
+# times K33 (`wing.in_plane_bending_stiffness` under the geometrically exact beam).
+SKIN_IN_PLANE = [
+    3317.57932,
+    3278.62894,
+    3282.87728,
+    3286.53821,
+    3288.81887,
+    3290.12279,
+    3290.7182,
+    3290.71311,
+    3290.15111,
+    3288.92576,
+    3286.8598,
+    3283.51136,
+    3279.04566,
+    3271.6443,
+    3373.72291,
+]
 KEYPOINT_MASS = [
     0.0191186108,
     0.0206788141,
@@ -241,8 +260,10 @@ UM_NAST_FLUTTER = {
 }
 
 
-def pazy_skin_wing() -> solver.Wing:
-    """The equivalent beam with skin on its 16 keypoints, its coupling -K23 (`pazy_wing`)."""
+def pazy_skin_wing(in_plane: bool = False) -> solver.Wing:
+    """The equivalent beam with skin on its 16 keypoints, its coupling -K23 (`pazy_wing`);
+    `in_plane`: bending in its plane too (K44, `SKIN_IN_PLANE`)."""
+    lag = {"in_plane_bending_stiffness": _per_station(SKIN_IN_PLANE)} if in_plane else {}
     return solver.Wing.create(
         np.asarray(KEYPOINTS),
         CHORD,
@@ -251,6 +272,7 @@ def pazy_skin_wing() -> solver.Wing:
         _per_station(SKIN_TORSION),
         airfoil="naca0018",
         bending_torsion_coupling=-_per_station(SKIN_COUPLING),
+        **lag,
     )
 
 

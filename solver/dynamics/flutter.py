@@ -69,7 +69,7 @@ from solver.inputs.flight import dynamic_pressure
 from solver.inputs.mass import MassModel
 from solver.inputs.options import SolverOptions, check_lag
 from solver.inputs.wing import Wing
-from solver.model.lag_beam import bent_strip_load_rows
+from solver.model.lag_beam import bent_station_load_rows, bent_strip_load_rows
 from solver.numerics.evaluation import Evaluation
 from solver.results.flutter import FlutterInfo, FlutterPoint, FlutterResult
 from solver.results.quantities import Progress
@@ -119,7 +119,9 @@ class FlutterOptions:
         "-",
         "natural modes in the solution's basis, the lowest (the divergence shape's remainder "
         "comes on top, condensed); null: six (twelve about a loaded equilibrium of a wing "
-        "with lag bending), or all of a mesh with fewer",
+        "with lag bending), or all of a mesh with fewer. A wing bent far with lag swings its "
+        "outer part fore and aft as it twists, which takes its higher in-plane modes: the Pazy "
+        "wing's hump needs 36 of its 45",
         ge=1,
         le=100,
         why="at least one mode; at most the mesh's 2 (N - 1), 3 (N - 1) with lag",
@@ -320,6 +322,7 @@ def _tangent(
         in_plane_bending_stiffness=beam.wing.in_plane_bending_stiffness,
         strip_load_rows=bent_strip_load_rows(beam.wing, beta, phi, psi),
         flap_rotation=beta,
+        station_load_rows=bent_station_load_rows(beam.wing, beta, phi, psi),
     )
 
 

@@ -226,14 +226,19 @@ def structure(
     in_plane_bending_stiffness: np.ndarray | None = None,
     strip_load_rows: np.ndarray | None = None,
     flap_rotation: np.ndarray | None = None,
+    station_load_rows: np.ndarray | None = None,
 ) -> Structure:
     """The cantilever of `wing` with `mass` (`Structure`); `rows` (3N, 3N), the structure rows'
     Jacobian to take instead of the linear beam's constant one (the geometrically exact beam's
     tangent about a bent state, `solver.model.exact_beam`); `in_plane_bending_stiffness` (N,)
     [N m^2], EI_lag: the beam bends in the wing's plane too (module docstring; `rows` then
     (5N, 5N)); `strip_load_rows` (n, n), the load rows of unit strip loads to take instead of
-    the jig's (about a bent state, `solver.model.lag_beam.bent_strip_load_rows`; concentrated
-    masses' stay the jig's); `flap_rotation` (N,) [rad], with lag, the bending rotation beta of
+    the jig's (about a bent state, `solver.model.lag_beam.bent_strip_load_rows`);
+    `station_load_rows` (N, n, 3) likewise each station's rows of a unit force along n, a
+    unit torque and a unit force along e_c, a concentrated mass's inertial loads (about a bent
+    state, `solver.model.lag_beam.bent_station_load_rows`: a mass raised above the stations
+    inboard twists them as it swings fore and aft; None: the jig's);
+    `flap_rotation` (N,) [rad], with lag, the bending rotation beta of
     that state: a lag rotation psi turns a bent section about its own tangent too (t . n =
     sin(beta)), so the sections' and the masses' rotary inertia is of phi + sin(beta) psi
     (R = R_n(psi) R_ec(beta) R_es(phi)'s angular velocity along t), and the flow's pitch is
@@ -299,9 +304,12 @@ def structure(
             motion[k, k * m + item.station - 1] = 1.0
         if turn is not None:
             motion[1] += turn[item.station]
-        mass_matrix = mass_matrix + rows_to_strip_loads @ beam.station_load_rows(item.station) @ (
-            block @ motion
+        at_station = (
+            beam.station_load_rows(item.station)
+            if station_load_rows is None
+            else station_load_rows[item.station]
         )
+        mass_matrix = mass_matrix + rows_to_strip_loads @ at_station @ (block @ motion)
         kinetic = kinetic + motion.T @ block @ motion
     lag_couples = rows_to_strip_loads @ beam.lag_couple_load_rows() if lag else None
     return Structure(

@@ -68,6 +68,7 @@ from solver.model.layout import Layout
 
 __all__ = [
     "LagBeam",
+    "bent_station_load_rows",
     "bent_strip_load_rows",
     "lag_axis_points",
     "lag_internal_loads",
@@ -278,45 +279,97 @@ def bent_strip_load_rows(
     stations inboard, twists them: the geometric coupling of torsion with lag bending that
     lowers the torsion frequency of a bent wing (docs/design/lag_bending.md, step 3)."""
     n = wing.n_stations
-    m = n - 1
-    h = np.diff(np.asarray(wing.arc_length, dtype=float))
-    line = np.stack(lag_reference_line(beta, psi, h), axis=1)  # (N, 3) in (e_s, n, e_c)
+    line = _deformed_line(wing, beta, psi)
     middle = (line[:-1] + line[1:]) / 2
+    strip_tangent = _tangent((beta[:-1] + beta[1:]) / 2, (psi[:-1] + psi[1:]) / 2)
+    moments = []
+    for unit in (_NORMAL, None, _ACROSS):  # a force along n, a torque, a force along e_c
+        for j in range(n - 1):
+            # About each station; the stations outboard of the strip carry none.
+            moment = np.zeros((n, 3))
+            if unit is None:
+                moment[: j + 1] = strip_tangent[j]
+            else:
+                moment[: j + 1] = np.cross(middle[j] - line[: j + 1], unit)
+            moments.append(moment)
+    return _rows_of_moments(wing, beta, phi, psi, np.array(moments))
 
-    def tangent(b: np.ndarray, p: np.ndarray) -> np.ndarray:
-        return np.stack([np.cos(b) * np.cos(p), np.sin(b), -np.cos(b) * np.sin(p)], axis=-1)
 
-    t = tangent(beta, psi)
+def bent_station_load_rows(
+    wing: Any, beta: np.ndarray, phi: np.ndarray, psi: np.ndarray
+) -> np.ndarray:
+    """Numpy, for the vibration model about a bent state: (N, 3(N-1), 3) at each station the
+    bending, torsion and lag bending rows' load terms of a unit force along n at the station's
+    deformed point, a unit torque about its tangent and a unit force along e_c (a concentrated
+    mass's inertial loads; about the jig `solver.dynamics.modes`' station rows to the bit). The
+    torque acts on the segments inboard of the station, each trapezoid taking it at both ends
+    (as about the jig). On the bent wing the in-plane force at a raised station twists the
+    stations inboard: a concentrated mass swings fore and aft as the wing twists."""
+    n = wing.n_stations
+    line = _deformed_line(wing, beta, psi)
+    t = _tangent(beta, psi)
+    rows = np.zeros((n, 3 * (n - 1), 3))
+    for station in range(1, n):
+        moments = np.zeros((3, n, 3))
+        inboard = slice(0, station + 1)
+        moments[0, inboard] = np.cross(line[station] - line[inboard], _NORMAL)
+        moments[1, inboard] = t[station]
+        moments[2, inboard] = np.cross(line[station] - line[inboard], _ACROSS)
+        rows[station] = _rows_of_moments(wing, beta, phi, psi, moments)
+        # The torque on the segments inboard only: the station's own segment outboard takes
+        # none of it (its trapezoid would take half at the station's end).
+        for group in range(3):
+            rows[station, group * (n - 1) + station : (group + 1) * (n - 1), 1] = 0.0
+    return rows
+
+
+# Unit forces along n and e_c, in (e_s, n, e_c).
+_NORMAL, _ACROSS = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
+
+
+def _deformed_line(wing: Any, beta: np.ndarray, psi: np.ndarray) -> np.ndarray:
+    """(N, 3) [m] the deformed axis's stations in (e_s, n, e_c)."""
+    h = np.diff(np.asarray(wing.arc_length, dtype=float))
+    return np.stack(lag_reference_line(beta, psi, h), axis=1)
+
+
+def _tangent(b: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """(..., 3) the tangent t at flap and lag rotations b, p [rad], in (e_s, n, e_c)."""
+    return np.stack([np.cos(b) * np.cos(p), np.sin(b), -np.cos(b) * np.sin(p)], axis=-1)
+
+
+def _rows_of_moments(
+    wing: Any, beta: np.ndarray, phi: np.ndarray, psi: np.ndarray, moments: np.ndarray
+) -> np.ndarray:
+    """(3(N-1), C) the bending, torsion and lag bending rows' load terms of C loads whose
+    moments about each station are `moments` (C, N, 3) [N m per unit load] in (e_s, n, e_c):
+    projected on the bent stations' axes and the twisted sections', through the compliance,
+    integrated by the trapezoid (module docstring)."""
+    n = wing.n_stations
+    h = np.diff(np.asarray(wing.arc_length, dtype=float))
+    t = _tangent(beta, psi)
     flap_axis = np.stack([np.sin(psi), np.zeros(n), np.cos(psi)], axis=-1)  # e_c'
     lag_axis = np.stack(
         [-np.sin(beta) * np.cos(psi), np.cos(beta), np.sin(beta) * np.sin(psi)], axis=-1
     )  # n''
-    strip_tangent = tangent((beta[:-1] + beta[1:]) / 2, (psi[:-1] + psi[1:]) / 2)
     ei, gj, cross = section_compliance(
         wing.bending_stiffness, wing.torsional_stiffness, wing.bending_torsion_coupling
     )
     ei_lag = np.asarray(wing.in_plane_bending_stiffness, dtype=float)
     cos_t, sin_t = np.cos(phi * DEG), np.sin(phi * DEG)
-    units = (np.array([0.0, 1.0, 0.0]), None, np.array([0.0, 0.0, 1.0]))
-    rows = np.zeros((3 * m, 3 * m))
-    for kind, unit in enumerate(units):
-        for j in range(m):
-            moment = np.zeros((n, 3))  # about each station, stations outboard of j carry none
-            if unit is None:
-                moment[: j + 1] = strip_tangent[j]
-            else:
-                moment[: j + 1] = np.cross(middle[j] - line[: j + 1], unit)
-            torque = np.einsum("ij,ij->i", moment, t)
-            flap = np.einsum("ij,ij->i", moment, flap_axis)
-            lag = np.einsum("ij,ij->i", moment, lag_axis)
-            flap_s, lag_s = cos_t * flap - sin_t * lag, sin_t * flap + cos_t * lag
-            kappa_f = flap_s / ei - cross * torque
-            kappa_l = lag_s / ei_lag
-            twist_rate = torque / gj - cross * flap_s
-            beta_rate = cos_t * kappa_f + sin_t * kappa_l
-            psi_rate = (-sin_t * kappa_f + cos_t * kappa_l) / np.cos(beta)
-            column = kind * m + j
-            rows[:m, column] = -h / 2 * (beta_rate[:-1] + beta_rate[1:])
-            rows[m : 2 * m, column] = -DEG_PER_RAD * h / 2 * (twist_rate[:-1] + twist_rate[1:])
-            rows[2 * m :, column] = -h / 2 * (psi_rate[:-1] + psi_rate[1:])
-    return rows
+    torque = np.einsum("cij,ij->ci", moments, t)
+    flap = np.einsum("cij,ij->ci", moments, flap_axis)
+    lag = np.einsum("cij,ij->ci", moments, lag_axis)
+    flap_s, lag_s = cos_t * flap - sin_t * lag, sin_t * flap + cos_t * lag
+    kappa_f = flap_s / ei - cross * torque
+    kappa_l = lag_s / ei_lag
+    twist_rate = torque / gj - cross * flap_s
+    beta_rate = cos_t * kappa_f + sin_t * kappa_l
+    psi_rate = (-sin_t * kappa_f + cos_t * kappa_l) / np.cos(beta)
+    return np.vstack(
+        [
+            (-h / 2 * (beta_rate[:, :-1] + beta_rate[:, 1:])).T,
+            (-DEG_PER_RAD * h / 2 * (twist_rate[:, :-1] + twist_rate[:, 1:])).T,
+            (-h / 2 * (psi_rate[:, :-1] + psi_rate[:, 1:])).T,
+        ]
+    )
