@@ -26,6 +26,12 @@ _SECANT_ITERATIONS = 60
 # sign the arithmetic's), so it never "crosses"; a real flutter's growth past its crossing is
 # orders of magnitude above it (the p-k roots converge to 1e-10 of |s| by default).
 _NEUTRAL = 1e-9
+# A growing root counts as flutter only below this reduced frequency k = omega b / V (b: half
+# the mean chord). Wings flutter at k of 0.05 to 1; past 5 the wake's wavelength 2 pi b / k is
+# shorter than the chord, and the roots there are the mesh's highest modes, whose shapes turn
+# sign from one strip to the next: no strip's or panel's loads describe them (about a bent wing
+# with lag they grow by 1e-9 to 1e-4 of critical, docs/accuracy.md). They stay in the V-g.
+_MAX_REDUCED_FREQUENCY = 5.0
 
 
 @dataclass
@@ -49,18 +55,21 @@ def flutter_onset(
     tracking: Tracking,
     semichord: float,
 ) -> tuple[FlutterOnset | None, int]:
-    """The first crossing of an oscillating root to growth, located by the secant method, and
-    the solves it took."""
+    """The first crossing of an oscillating root to growth below the reduced frequency
+    `_MAX_REDUCED_FREQUENCY` (`semichord` [m] its b), located by the secant method, and the
+    solves it took."""
     scale = float(basis.vacuum.min())
     # From the first airspeed on: in still air every root is undamped, Re(s) = 0 to round-off.
     for i in range(2, len(tracked.grid)):
         before, after = tracked.roots[i - 1], tracked.roots[i]
         if before is None or after is None:
             continue  # no equilibrium at one of them: nothing to bracket
+        resolved = np.abs(after.imag) * semichord <= _MAX_REDUCED_FREQUENCY * tracked.grid[i]
         crossing = (
             (before.real <= _NEUTRAL * np.abs(before))
             & (after.real > _NEUTRAL * np.abs(after))
             & oscillating(after)
+            & resolved
         )
         if not np.any(crossing):
             continue

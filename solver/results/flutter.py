@@ -166,7 +166,12 @@ class FlutterResult:
         "searched; no_equilibrium: no requested airspeed has a static equilibrium to linearise "
         "about (each point's `reason` says why)",
     )
-    flutter: FlutterOnset | None = quantity("", "the first flutter onset, or null")
+    flutter: FlutterOnset | None = quantity(
+        "",
+        "the first flutter onset (an oscillating root's growth at a reduced frequency k up "
+        "to 5; past it the mesh's highest modes, which no strip's or panel's loads describe, "
+        "stay in the points), or null",
+    )
     no_flutter: NoFlutter | None = quantity(
         "", "what was searched when no root fluttered (null otherwise)"
     )

@@ -125,3 +125,9 @@ def test_pd2_at_7_deg_the_wing_flutters_in_the_hump_mode_where_um_nast_does():
     first = int(np.argmax(least < 0))
     hump = np.where(band[first], damping[first], np.inf).argmin()
     assert frequency[first, hump] == pytest.approx(30.5, rel=0.03)
+    # The answer's flutter is the hump's onset: the mesh's highest modes, which grow by 1e-9 to
+    # 1e-4 of critical from the lowest airspeeds at thousands of Hz (k of 6 to 300), are past
+    # the reduced frequency that counts (5).
+    assert result.flutter is not None
+    assert result.flutter.velocity == pytest.approx(onset, rel=2e-3)
+    assert result.flutter.frequency * HZ == pytest.approx(30.5, rel=0.03)
