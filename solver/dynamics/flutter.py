@@ -87,8 +87,8 @@ _DEFAULT_MODES = 6
 # need the jig's second lag mode (the HALE wing's tenth, 202 rad/s; bent by 8 % of its span its
 # flutter speed is 27.03 m/s on six modes, 31.06 on eight, 25.95 on ten, 25.93 on twelve, 25.91
 # on eighteen; bent by 11 %, none found on six). Not enough where the lag modes lie far above
-# the others: the Pazy wing's twelve hold one lag mode, and its torsion bent by 30 % of the
-# span is at 80 Hz on them against 43 on a basis with four (docs/accuracy.md, Lag bending).
+# the others: the Pazy wing's twelve hold one lag mode, and its hump flutter needs 36 of its 45
+# modes (its outer part swings fore and aft as it twists: docs/accuracy.md, Lag bending).
 _DEFAULT_MODES_BENT_LAG = 12
 # The tracking steps: at most this fraction of the largest airspeed each.
 _STEPS = 40
