@@ -474,8 +474,38 @@ def _antisymmetric_parts(
     wing, layout, k = system.wing, system.layout, system.chordwise
     base = panel_loads(system.with_flow(Flow()), x, q)
     sweep = wing.sweep * DEG
+    slope, phi = dx[layout.slope], dx[layout.twist]
+    statics = (_exact_statics if layout.exact else _linear_statics)(system, x, dx, base, change)
+    stations = Stations(
+        y=wing.y,
+        heave=dx[layout.heave].copy(),
+        twist=phi * math.cos(sweep) - np.degrees(slope) * math.sin(sweep),
+        axis_twist=phi.copy(),
+        shear=outboard_sum(base.per_strip(change.force[2], k)),
+        **statics,
+    )
+    strip, dfz, widths = base.per_strip, change.force[2], np.diff(wing.y)
+    lift = strip(dfz, k)
+    strips = Panels(
+        y=panels.y,
+        lift=lift,
+        lift_per_span=lift / widths,
+        torque=strip(change.torque, k),
+        rigid_lift_per_span=q * strip(rigid_change.force[2], k) / widths,
+    )
+    return stations, strips
+
+
+def _linear_statics(
+    system: CoupledSystem, x: np.ndarray, dx: np.ndarray, base: PanelLoads, change: PanelLoads
+) -> dict[str, np.ndarray]:
+    """Under the linear beam, the disturbance's slope, bending moment and torque [N m]: the
+    change of the linear statics (`solver.statics.loads`: vertical forces at their arms along
+    the elastic axis, the torque about it, about the heaved axis with `deformed_axis`) along
+    the loads' change and dx."""
+    wing, layout, k = system.wing, system.layout, system.chordwise
+    sweep = wing.sweep * DEG
     e_s = np.array([math.sin(sweep), math.cos(sweep), 0.0])
-    heave, slope, phi = dx[layout.heave], dx[layout.slope], dx[layout.twist]
     dfz = change.force[2]
     arm, darm = e_s @ base.center, e_s @ change.center
     strip = base.per_strip
@@ -486,30 +516,9 @@ def _antisymmetric_parts(
     if system.deformed_axis:
         axis = base.force[0] * math.cos(sweep) - base.force[1] * math.sin(sweep)
         daxis = change.force[0] * math.cos(sweep) - change.force[1] * math.sin(sweep)
-        u0 = x[layout.heave]
+        heave, u0 = dx[layout.heave], x[layout.heave]
         torque = torque - heave * outboard_sum(strip(axis, k)) - u0 * outboard_sum(strip(daxis, k))
-    widths = np.diff(wing.y)
-    exact = _exact_statics(system, x, dx, base, change) if layout.exact else {}
-    stations = Stations(
-        y=wing.y,
-        heave=heave.copy(),
-        slope=exact.pop("slope", slope.copy()),
-        twist=phi * math.cos(sweep) - np.degrees(slope) * math.sin(sweep),
-        axis_twist=phi.copy(),
-        shear=shear,
-        bending_moment=exact.pop("bending_moment", bending),
-        torque=exact.pop("torque", torque),
-        **exact,
-    )
-    lift = strip(dfz, k)
-    strips = Panels(
-        y=panels.y,
-        lift=lift,
-        lift_per_span=lift / widths,
-        torque=strip(change.torque, k),
-        rigid_lift_per_span=q * strip(rigid_change.force[2], k) / widths,
-    )
-    return stations, strips
+    return {"slope": dx[layout.slope].copy(), "bending_moment": bending, "torque": torque}
 
 
 # The complex step of `_exact_statics` [-]: its imaginary part carries the derivative, and
